@@ -1,0 +1,266 @@
+"""Noise amplitude D(u, r) of a frictional contact from the zero-current condition (F-20).
+
+For the calculus theta (Itô 0, Stratonovich 1/2, Hänggi–Klimontovich 1) and nu = (1 - theta) mu,
+
+    nu kT dD/du - u D = -f,                                                   (F-20)
+
+whose decaying solution for nu != 0 is, with a = kT nu,
+
+    D(u) = (1/a) int_u^oo f(s) exp(-(s^2 - u^2) / (2a)) ds,                    (F-22)
+
+and D = f/u for nu = 0 (HK; the paper's (F-23) carries a spurious kT). D has units of
+force / velocity (friction coefficient); the random contact force is sqrt(D) times a white
+noise of variance 2 kT per unit time.
+
+Closed forms: f is split at its branch points (Min, Max, Piecewise) into pieces on intervals of
+u; on each piece a polynomial in u integrates exactly with the Gaussian moments
+I_n(x) = int_x^oo s^n exp(-s^2/2a) ds (I_0 with erfc, I_1 elementary, then a recurrence).
+Other pieces keep the exact integral (F-22), evaluated numerically downstream.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import Enum
+
+import mpmath
+import sympy as sp
+
+from .laws import FrictionLaw, LawError
+from .symbols import kT, mu, r, s, u, w
+
+
+class Calculus(str, Enum):
+    """Stochastic calculus with its evaluation point theta."""
+
+    ITO = "ito"
+    STRATONOVICH = "stratonovich"
+    HK = "hk"
+
+    @property
+    def theta(self) -> sp.Rational:
+        return {"ito": sp.Integer(0), "stratonovich": sp.Rational(1, 2), "hk": sp.Integer(1)}[self.value]
+
+
+def contact_mobility(m_i, m_k, radius_i, radius_k, inertia_i=None, inertia_k=None) -> sp.Expr:
+    """mu = 1/m_i + 1/m_k + R_i^2/I_i + R_k^2/I_k (units 1/mass); solid spheres by default.
+
+    Raises ValueError for non-positive masses, radii or moments of inertia.
+    """
+    inertia_i = sp.Rational(2, 5) * m_i * radius_i**2 if inertia_i is None else inertia_i
+    inertia_k = sp.Rational(2, 5) * m_k * radius_k**2 if inertia_k is None else inertia_k
+    for name, value in (("m_i", m_i), ("m_k", m_k), ("R_i", radius_i), ("R_k", radius_k), ("I_i", inertia_i), ("I_k", inertia_k)):
+        if sp.sympify(value).is_positive is False or sp.sympify(value).is_zero:
+            raise ValueError(f"{name} must be positive, got {value}")
+    return sp.nsimplify(1 / sp.sympify(m_i) + 1 / sp.sympify(m_k) + sp.sympify(radius_i) ** 2 / inertia_i + sp.sympify(radius_k) ** 2 / inertia_k)
+
+
+@dataclass(frozen=True)
+class NoiseModel:
+    """The noise amplitude D(u, w, r) of a law for one calculus.
+
+    Attributes:
+        law: the friction law.
+        calculus: the calculus D was derived for.
+        amplitude: D as a SymPy expression (Piecewise for branched laws); in integral form it
+            contains an unevaluated ``Integral`` over ``s`` from u to oo.
+        closed_form: False when ``amplitude`` is the integral representation (F-22).
+        mobility: the contact mobility mu (a symbol or an expression of particle properties).
+    """
+
+    law: FrictionLaw
+    calculus: Calculus
+    amplitude: sp.Expr
+    closed_form: bool
+    mobility: sp.Expr = mu
+
+    @property
+    def nu(self) -> sp.Expr:
+        """nu = (1 - theta) mu (F-21)."""
+        return (1 - self.calculus.theta) * self.mobility
+
+    @property
+    def variance_scale(self) -> sp.Expr:
+        """a = kT nu, the velocity variance scale of the contact mode."""
+        return kT * self.nu
+
+
+def derive_noise(law: FrictionLaw, calculus: Calculus | str, mobility: sp.Expr | float | None = None) -> NoiseModel:
+    """Derive D(u, w, r) for ``law`` in ``calculus``; closed form when one is found.
+
+    Args:
+        law: a validated friction law.
+        calculus: "ito", "stratonovich" or "hk".
+        mobility: contact mobility mu; the symbol ``mu`` by default, or a positive number or
+            expression (see :func:`contact_mobility`).
+    """
+    calculus = Calculus(calculus)
+    mobility = mu if mobility is None else sp.nsimplify(sp.sympify(mobility))
+    if mobility.is_positive is not True:
+        raise LawError(f"contact mobility must be positive, got {mobility}")
+    model = NoiseModel(law, calculus, sp.Integer(0), True, mobility)
+    if calculus is Calculus.HK:
+        pieces = branches(law.friction)
+        if pieces is None:
+            return NoiseModel(law, calculus, sp.simplify(law.friction / u), True, mobility)
+        return NoiseModel(law, calculus, _piecewise([(sp.simplify(p.expr / u), p) for p in pieces]), True, mobility)
+    closed = closed_form_amplitude(law.friction, model.variance_scale)
+    if closed is not None:
+        return NoiseModel(law, calculus, closed, True, mobility)
+    return NoiseModel(law, calculus, integral_amplitude(law.friction, model.variance_scale), False, mobility)
+
+
+def integral_amplitude(friction: sp.Expr, a: sp.Expr) -> sp.Expr:
+    """The exact integral representation (F-22), D = (1/a) int_u^oo f(s) e^{-(s^2-u^2)/2a} ds."""
+    return sp.exp(u**2 / (2 * a)) / a * sp.Integral(friction.subs(u, s) * sp.exp(-(s**2) / (2 * a)), (s, u, sp.oo))
+
+
+# --- branches of f in u ---------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Branch:
+    """The expression of a piecewise function on lower <= u < upper."""
+
+    expr: sp.Expr
+    lower: sp.Expr
+    upper: sp.Expr
+
+    @property
+    def probe(self) -> sp.Expr:
+        """A point strictly inside the interval."""
+        if self.upper == sp.oo:
+            return 2 * self.lower if self.lower != 0 else sp.Integer(1)
+        return (self.lower + self.upper) / 2
+
+
+def branches(expr: sp.Expr) -> list[Branch] | None:
+    """Split ``expr`` (Min/Max/Piecewise in u) into branches on ordered intervals of u >= 0.
+
+    Returns a single branch on [0, oo) for smooth expressions, and None when the branch points
+    cannot be solved for and ordered symbolically.
+    """
+    folded = sp.piecewise_fold(expr.rewrite(sp.Piecewise))
+    if not isinstance(folded, sp.Piecewise):
+        return [Branch(expr, sp.Integer(0), sp.oo)]
+    points: list[sp.Expr] = []
+    for _, condition in folded.args:
+        for relation in condition.atoms(sp.core.relational.Relational):
+            if u not in relation.free_symbols:
+                return None
+            for root in sp.solve(sp.Eq(relation.lhs, relation.rhs), u):
+                if root.is_positive and root not in points:
+                    points.append(root)
+                elif not root.is_nonpositive and root not in points:
+                    return None
+    ordered = _ordered(points)
+    if ordered is None:
+        return None
+    edges = [sp.Integer(0), *ordered, sp.oo]
+    result = []
+    for lower, upper in zip(edges, edges[1:]):
+        probe = Branch(sp.Integer(0), lower, upper).probe
+        chosen = _branch_at(folded, probe)
+        if chosen is None:
+            return None
+        result.append(Branch(chosen, lower, upper))
+    return result
+
+
+def _ordered(points: list[sp.Expr]) -> list[sp.Expr] | None:
+    ordered: list[sp.Expr] = []
+    for p in points:
+        position = 0
+        for q in ordered:
+            greater = (p - q).is_positive
+            if greater is None:
+                return None
+            position += bool(greater)
+        ordered.insert(position, p)
+    return ordered
+
+
+def _branch_at(folded: sp.Piecewise, probe: sp.Expr) -> sp.Expr | None:
+    for expr, condition in folded.args:
+        truth = sp.simplify(condition.subs(u, probe))
+        if truth == sp.true:
+            return expr
+        if truth != sp.false:
+            return None
+    return None
+
+
+def _piecewise(parts: list[tuple[sp.Expr, Branch]]) -> sp.Expr:
+    """Piecewise((D_0, u < b_1), ..., (D_n, True)) from branches; a plain expression if one."""
+    if len(parts) == 1:
+        return parts[0][0]
+    return sp.Piecewise(*[(d, u < b.upper) for d, b in parts[:-1]], (parts[-1][0], True))
+
+
+# --- closed forms ---------------------------------------------------------------------------
+
+def gaussian_tail_moment(n: int, x: sp.Expr, a: sp.Expr) -> sp.Expr:
+    """I_n(x) = int_x^oo s^n exp(-s^2/(2a)) ds, exactly; I_n(oo) = 0."""
+    if x == sp.oo:
+        return sp.Integer(0)
+    if n == 0:
+        return sp.sqrt(sp.pi * a / 2) * sp.erfc(x / sp.sqrt(2 * a))
+    if n == 1:
+        return a * sp.exp(-(x**2) / (2 * a))
+    return a * x ** (n - 1) * sp.exp(-(x**2) / (2 * a)) + (n - 1) * a * gaussian_tail_moment(n - 2, x, a)
+
+
+def _tail(expr: sp.Expr, x: sp.Expr, a: sp.Expr) -> sp.Expr | None:
+    """int_x^oo expr(s) exp(-s^2/2a) ds for expr polynomial in u, else None."""
+    try:
+        poly = sp.Poly(sp.expand(expr), u)
+    except sp.PolynomialError:
+        return None
+    if any(c.has(u) for c in poly.coeffs()):
+        return None
+    return sp.Add(*[c * gaussian_tail_moment(m[0], x, a) for m, c in zip(poly.monoms(), poly.coeffs())])
+
+
+def closed_form_amplitude(friction: sp.Expr, a: sp.Expr) -> sp.Expr | None:
+    """(F-22) in closed form when every branch of f is a polynomial in u, else None."""
+    pieces = branches(friction)
+    if pieces is None:
+        return None
+    parts = []
+    for j, piece in enumerate(pieces):
+        head = _tail(piece.expr, u, a)
+        if head is None:
+            return None
+        total = head - _tail(piece.expr, piece.upper, a)
+        for later in pieces[j + 1 :]:
+            total += _tail(later.expr, later.lower, a) - _tail(later.expr, later.upper, a)
+        amplitude = sp.powsimp(sp.expand(sp.exp(u**2 / (2 * a)) / a * total))
+        parts.append((sp.simplify(amplitude), piece))
+    return _piecewise(parts)
+
+
+# --- numbers --------------------------------------------------------------------------------
+
+def numeric_amplitude(model: NoiseModel, values: dict[sp.Symbol, float]) -> "callable":
+    """D as a function of u (mpmath), with every other symbol given in ``values``.
+
+    The integral form is evaluated with adaptive quadrature (mpmath.quad), independently of any
+    generated code.
+    """
+    amplitude = model.amplitude.subs(values)
+    if model.closed_form:
+        return sp.lambdify(u, amplitude, modules="mpmath")
+    a = model.variance_scale.subs(values)
+    f = sp.lambdify(u, model.law.friction.subs(values), modules="mpmath")
+    a = mpmath.mpf(str(sp.N(a, 30)))
+
+    def integral(x):
+        x = mpmath.mpf(x)
+        return mpmath.quad(lambda t: f(t) * mpmath.exp(-(t * t - x * x) / (2 * a)), [x, x + mpmath.sqrt(a), mpmath.inf]) / a
+
+    return integral
+
+
+__all__ = [
+    "Branch", "Calculus", "NoiseModel", "branches", "closed_form_amplitude", "contact_mobility",
+    "derive_noise", "gaussian_tail_moment", "integral_amplitude", "numeric_amplitude", "r", "w",
+]
