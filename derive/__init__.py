@@ -14,6 +14,18 @@ from .noise import Calculus, NoiseModel, contact_mobility, derive_noise
 from .verify import Report, verify
 
 __all__ = [
-    "CATALOGUE", "Calculus", "FrictionLaw", "LawError", "NoiseModel", "Parameter", "Report",
-    "catalogue", "contact_mobility", "derive_noise", "load_law", "make_law", "save_law", "verify",
+    "CATALOGUE",
+    "Calculus",
+    "FrictionLaw",
+    "LawError",
+    "NoiseModel",
+    "Parameter",
+    "Report",
+    "catalogue",
+    "contact_mobility",
+    "derive_noise",
+    "load_law",
+    "make_law",
+    "save_law",
+    "verify",
 ]

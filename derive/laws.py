@@ -206,11 +206,15 @@ def validate(law: FrictionLaw) -> None:
     allowed = {u, r, w, *law.symbols.values()}
     unknown = f.free_symbols - allowed
     if unknown:
-        raise LawError(f"law {law.name}: unknown symbol(s) {sorted(map(str, unknown))} in f = {f}; "
-                       f"allowed: u, r, w and parameters {sorted(law.symbols)}")
+        raise LawError(
+            f"law {law.name}: unknown symbol(s) {sorted(map(str, unknown))} in f = {f}; "
+            f"allowed: u, r, w and parameters {sorted(law.symbols)}"
+        )
     if not f.free_symbols & {u, w, r}:
-        raise LawError(f"law {law.name}: f = {f} depends on none of u, w, r: a friction law must depend on the "
-                       f"sliding speed u or (constant friction, F-30) vanish off contact through w(r) or r")
+        raise LawError(
+            f"law {law.name}: f = {f} depends on none of u, w, r: a friction law must depend on the "
+            f"sliding speed u or (constant friction, F-30) vanish off contact through w(r) or r"
+        )
     if w in f.free_symbols and law.weight is None:
         raise LawError(f"law {law.name}: f uses w but the law defines no weight (set weight = 'wca' or an expression in r)")
     if f.has(sp.I) or f.is_real is False:
@@ -231,7 +235,7 @@ def _check_samples(law: FrictionLaw) -> None:
                     try:
                         value = evaluate(mpmath.mpf(uu), mpmath.mpf(ww), mpmath.mpf(rr))
                     except (ZeroDivisionError, ValueError, OverflowError) as error:
-                        raise LawError(f"law {law.name}: f cannot be evaluated at u={uu}, w={ww}, r={rr}: {error}") from error
+                        raise LawError(f"law {law.name}: f is not finite at u={uu}, w={ww}, r={rr} ({type(error).__name__})") from error
                     value = mpmath.mpmathify(value)
                     if isinstance(value, mpmath.mpc) and abs(value.imag) > 0:
                         raise LawError(f"law {law.name}: f is not real at u={uu}, w={ww}, r={rr} (f = {value})")
@@ -239,8 +243,10 @@ def _check_samples(law: FrictionLaw) -> None:
                     if not mpmath.isfinite(value):
                         raise LawError(f"law {law.name}: f is not finite at u={uu}, w={ww}, r={rr}")
                     if value < 0:
-                        raise LawError(f"law {law.name}: f is negative at u={uu}, w={ww}, r={rr} "
-                                       f"(f = {mpmath.nstr(value, 6)}); friction must oppose sliding, f >= 0")
+                        raise LawError(
+                            f"law {law.name}: f is negative at u={uu}, w={ww}, r={rr} "
+                            f"(f = {mpmath.nstr(value, 6)}); friction must oppose sliding, f >= 0"
+                        )
 
 
 def _check_tail(law: FrictionLaw) -> None:
@@ -278,6 +284,7 @@ def _asymptotic_branch(f: sp.Expr) -> sp.Expr:
 
 
 # --- files ------------------------------------------------------------------------------------
+
 
 def load_law(path: str | Path) -> FrictionLaw:
     """Read and validate a law file (TOML)."""

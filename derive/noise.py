@@ -21,7 +21,7 @@ Other pieces keep the exact integral (F-22), evaluated numerically downstream.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from enum import Enum
+from enum import StrEnum
 
 import mpmath
 import sympy as sp
@@ -30,7 +30,7 @@ from .laws import FrictionLaw, LawError
 from .symbols import kT, mu, r, s, u, w
 
 
-class Calculus(str, Enum):
+class Calculus(StrEnum):
     """Stochastic calculus with its evaluation point theta."""
 
     ITO = "ito"
@@ -47,12 +47,14 @@ def contact_mobility(m_i, m_k, radius_i, radius_k, inertia_i=None, inertia_k=Non
 
     Raises ValueError for non-positive masses, radii or moments of inertia.
     """
-    inertia_i = sp.Rational(2, 5) * m_i * radius_i**2 if inertia_i is None else inertia_i
-    inertia_k = sp.Rational(2, 5) * m_k * radius_k**2 if inertia_k is None else inertia_k
-    for name, value in (("m_i", m_i), ("m_k", m_k), ("R_i", radius_i), ("R_k", radius_k), ("I_i", inertia_i), ("I_k", inertia_k)):
-        if sp.sympify(value).is_positive is False or sp.sympify(value).is_zero:
+    m_i, m_k, radius_i, radius_k = (sp.nsimplify(sp.sympify(v)) for v in (m_i, m_k, radius_i, radius_k))
+    inertia_i = sp.Rational(2, 5) * m_i * radius_i**2 if inertia_i is None else sp.nsimplify(sp.sympify(inertia_i))
+    inertia_k = sp.Rational(2, 5) * m_k * radius_k**2 if inertia_k is None else sp.nsimplify(sp.sympify(inertia_k))
+    named = {"m_i": m_i, "m_k": m_k, "R_i": radius_i, "R_k": radius_k, "I_i": inertia_i, "I_k": inertia_k}
+    for name, value in named.items():
+        if value.is_positive is False or value.is_zero:
             raise ValueError(f"{name} must be positive, got {value}")
-    return sp.nsimplify(1 / sp.sympify(m_i) + 1 / sp.sympify(m_k) + sp.sympify(radius_i) ** 2 / inertia_i + sp.sympify(radius_k) ** 2 / inertia_k)
+    return 1 / m_i + 1 / m_k + radius_i**2 / inertia_i + radius_k**2 / inertia_k
 
 
 @dataclass(frozen=True)
@@ -116,6 +118,7 @@ def integral_amplitude(friction: sp.Expr, a: sp.Expr) -> sp.Expr:
 
 
 # --- branches of f in u ---------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class Branch:
@@ -198,6 +201,7 @@ def _piecewise(parts: list[tuple[sp.Expr, Branch]]) -> sp.Expr:
 
 # --- closed forms ---------------------------------------------------------------------------
 
+
 def gaussian_tail_moment(n: int, x: sp.Expr, a: sp.Expr) -> sp.Expr:
     """I_n(x) = int_x^oo s^n exp(-s^2/(2a)) ds, exactly; I_n(oo) = 0."""
     if x == sp.oo:
@@ -240,7 +244,8 @@ def closed_form_amplitude(friction: sp.Expr, a: sp.Expr) -> sp.Expr | None:
 
 # --- numbers --------------------------------------------------------------------------------
 
-def numeric_amplitude(model: NoiseModel, values: dict[sp.Symbol, float]) -> "callable":
+
+def numeric_amplitude(model: NoiseModel, values: dict[sp.Symbol, float]) -> callable:
     """D as a function of u (mpmath), with every other symbol given in ``values``.
 
     The integral form is evaluated with adaptive quadrature (mpmath.quad), independently of any
@@ -261,6 +266,16 @@ def numeric_amplitude(model: NoiseModel, values: dict[sp.Symbol, float]) -> "cal
 
 
 __all__ = [
-    "Branch", "Calculus", "NoiseModel", "branches", "closed_form_amplitude", "contact_mobility",
-    "derive_noise", "gaussian_tail_moment", "integral_amplitude", "numeric_amplitude", "r", "w",
+    "Branch",
+    "Calculus",
+    "NoiseModel",
+    "branches",
+    "closed_form_amplitude",
+    "contact_mobility",
+    "derive_noise",
+    "gaussian_tail_moment",
+    "integral_amplitude",
+    "numeric_amplitude",
+    "r",
+    "w",
 ]

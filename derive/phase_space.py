@@ -186,10 +186,7 @@ def current_per_boltzmann(space: PairPhaseSpace, calculus: str) -> sp.Matrix:
     drift = friction_drift(space, F_SYM / U_SYM)
     if calculus == "ito":
         diffusion = (sigma * sigma.T).applyfunc(sp.expand)
-        noise = [
-            -sum(d(diffusion[a, b], b) + diffusion[a, b] * log_boltzmann[b] for b in range(size)) / 2
-            for a in range(size)
-        ]
+        noise = [-sum(d(diffusion[a, b], b) + diffusion[a, b] * log_boltzmann[b] for b in range(size)) / 2 for a in range(size)]
     elif calculus == "stratonovich":
         inner = [sum(d(sigma[b, g], b) + sigma[b, g] * log_boltzmann[b] for b in range(size)) for g in range(noises)]
         noise = [-sum(sigma[a, g] * inner[g] for g in range(noises)) / 2 for a in range(size)]

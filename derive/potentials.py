@@ -38,7 +38,7 @@ class Potential:
     @property
     def force(self) -> sp.Expr:
         """F = -dU/d(variable), branch by branch for piecewise energies."""
-        return -sp.diff(self.energy, self.variable)
+        return sp.piecewise_fold(-sp.diff(self.energy, self.variable))
 
 
 def _wca() -> Potential:
@@ -58,8 +58,12 @@ def _sticky() -> Potential:
     inside = -kT * sp.log(1 + gamma * delta_eps(r - sigma, p, eps))
     energy = sp.Piecewise((inside, r < sigma + eps), (0, True))
     return Potential(
-        "sticky", energy, r, {"gamma": 1.0, "p": 3.0, "eps": 0.05, "sigma": 1.0},
-        {"gamma": "sigma", "p": "1", "eps": "sigma", "sigma": "sigma"}, "B-31",
+        "sticky",
+        energy,
+        r,
+        {"gamma": 1.0, "p": 3.0, "eps": 0.05, "sigma": 1.0},
+        {"gamma": "sigma", "p": "1", "eps": "sigma", "sigma": "sigma"},
+        "B-31",
     )
 
 

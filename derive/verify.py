@@ -52,8 +52,12 @@ class Report:
 
     def as_dict(self) -> dict:
         return {
-            "law": self.law, "calculus": self.calculus, "closed_form": self.closed_form,
-            "verified": self.verified, "checks": dict(self.checks), "details": dict(self.details),
+            "law": self.law,
+            "calculus": self.calculus,
+            "closed_form": self.closed_form,
+            "verified": self.verified,
+            "checks": dict(self.checks),
+            "details": dict(self.details),
             "seconds": round(self.seconds, 3),
         }
 

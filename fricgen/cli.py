@@ -29,8 +29,10 @@ def _verify(args: argparse.Namespace) -> int:
         law = laws[name]
         for calculus in calculi:
             if calculus not in law.calculi and name not in named:
-                print(f"skipped {name}/{calculus}: not among the law's calculi {list(law.calculi)} "
-                      f"(name the law to verify it anyway)", file=sys.stderr)
+                print(
+                    f"skipped {name}/{calculus}: not among the law's calculi {list(law.calculi)} (name the law to verify it anyway)",
+                    file=sys.stderr,
+                )
                 continue
             report = verify(derive_noise(law, calculus))
             reports.append(report)
