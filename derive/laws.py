@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import json
 import math
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -35,13 +34,13 @@ from sympy.core.function import AppliedUndef
 from sympy.parsing.sympy_parser import parse_expr
 
 from . import potentials
+from .lawdata import CATALOGUE, LawFileError, read_law_data
 from .symbols import RESERVED, r, u, w
 
-CATALOGUE = Path(__file__).with_name("catalogue")
 CALCULI = ("ito", "stratonovich", "hk")
 
 
-class LawError(ValueError):
+class LawError(LawFileError):
     """A friction law that cannot have a thermodynamically consistent noise amplitude."""
 
 
@@ -133,8 +132,8 @@ def make_law(
     weight_expr, weight_params = _weight(name, weight, params)
     params = params + weight_params
     for p in params:
-        if p.name in RESERVED:
-            raise LawError(f"law {name}: parameter name {p.name!r} is reserved")
+        if p.name in RESERVED or p.name.startswith(("cse", "_")) or not p.name.isidentifier():
+            raise LawError(f"law {name}: parameter name {p.name!r} is reserved or not an identifier")
         if not (isinstance(p.default, (int, float)) and math.isfinite(p.default) and p.default > 0):
             raise LawError(f"law {name}: parameter {p.name} needs a finite positive default, got {p.default!r}")
     names = {"u": u, "r": r, "w": w, **{p.name: p.symbol for p in params}}
@@ -290,9 +289,9 @@ def load_law(path: str | Path) -> FrictionLaw:
     """Read and validate a law file (TOML)."""
     path = Path(path)
     try:
-        data = tomllib.loads(path.read_text())
-    except tomllib.TOMLDecodeError as error:
-        raise LawError(f"{path}: not valid TOML: {error}") from error
+        data = read_law_data(path)
+    except LawFileError as error:
+        raise LawError(str(error)) from error
     known = {"name", "friction", "parameters", "weight", "calculi", "description", "reference"}
     unknown = set(data) - known
     if unknown:

@@ -19,5 +19,5 @@ mu = sp.Symbol("mu", positive=True)
 #: Integration variable of the integral representation (F-22).
 s = sp.Symbol("s", positive=True)
 
-#: Names a law may not use for its parameters.
-RESERVED = frozenset({"u", "r", "w", "kT", "mu", "s"})
+#: Names a law may not use for its parameters (symbols, and names of the generated kernels).
+RESERVED = frozenset({"u", "r", "w", "kT", "mu", "s", "params", "math", "numba", "erfcx", "friction", "weight"})

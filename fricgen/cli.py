@@ -47,6 +47,88 @@ def _verify(args: argparse.Namespace) -> int:
     return 0 if all(r.verified for r in reports) else 1
 
 
+def _generate(args: argparse.Namespace) -> int:
+    """fricgen generate [LAW ...]: derive, verify and emit kernels (idempotent)."""
+    from derive.emit import GENERATED, GenerationError, generate
+    from derive.laws import LawError
+
+    try:
+        written, reports = generate(args.laws or None, output=args.output or GENERATED)
+    except (GenerationError, LawError) as error:
+        print(f"fricgen generate: {error}", file=sys.stderr)
+        return 1
+    for report in reports:
+        print(f"verified {report.law}/{report.calculus} ({'closed form' if report.closed_form else 'integral (F-22)'})")
+    for item in written:
+        print(f"{item.status:9s} {item.path}")
+    return 0
+
+
+def _floats(text: str) -> list[float]:
+    try:
+        return [float(x) for x in text.split(",") if x.strip()]
+    except ValueError as error:
+        raise argparse.ArgumentTypeError(f"expected comma-separated numbers, got {text!r}") from error
+
+
+def _assignment(text: str) -> tuple[str, float]:
+    name, sep, value = text.partition("=")
+    try:
+        if not sep:
+            raise ValueError
+        return name.strip(), float(value)
+    except ValueError as error:
+        raise argparse.ArgumentTypeError(f"expected NAME=VALUE, got {text!r}") from error
+
+
+def _noise(args: argparse.Namespace) -> int:
+    """fricgen noise LAW ...: D(u) through the generated kernels, as JSON."""
+    import numpy as np
+
+    from fricgen.kernels import KernelError, load_law_kernels
+
+    try:
+        kernels = load_law_kernels(args.law)
+        params = kernels.parameters(**dict(args.param))
+        kernels.noise_amplitude(args.calculus)
+    except KernelError as error:
+        print(f"fricgen noise: {error}", file=sys.stderr)
+        return 2
+    problems = [f"--{k} must be positive" for k in ("mu", "kT") if not getattr(args, k) > 0]
+    problems += ["--u values must be finite and >= 0"] if any(not (np.isfinite(x) and x >= 0) for x in args.u) else []
+    if kernels.has_weight and args.r is None and args.w is None:
+        problems.append(f"law {args.law} has a weight w(r): give --r R (centre distance) or --w W (weight value)")
+    if args.w is not None and args.w < 0:
+        problems.append("--w must be >= 0")
+    if problems:
+        print("fricgen noise: " + "; ".join(problems), file=sys.stderr)
+        return 2
+    r = 1.0 if args.r is None else args.r
+    w = args.w if args.w is not None else (float(kernels.weight(r, params)) if kernels.has_weight else 1.0)
+    amplitude = kernels.noise_amplitude(args.calculus)
+    d = [float(amplitude(x, w, r, args.mu, args.kT, params)) for x in args.u]
+    f = [float(kernels.friction(x, w, r, params)) for x in args.u]
+    result = {
+        "law": args.law,
+        "calculus": args.calculus,
+        "u": args.u,
+        "D": d,
+        "f": f,
+        "w": w,
+        "r": r,
+        "mu": args.mu,
+        "kT": args.kT,
+        "parameters": dict(zip(kernels.parameter_names, params.tolist())),
+    }
+    if args.json:
+        print(json.dumps(result, indent=2))
+    else:
+        print(f"{args.law} ({args.calculus}), w = {w:g}, mu = {args.mu:g}, kT = {args.kT:g}")
+        for x, fx, dx in zip(args.u, f, d):
+            print(f"u = {x:12.6g}   f = {fx:12.6g}   D = {dx:.12g}")
+    return 0
+
+
 def parser() -> argparse.ArgumentParser:
     main = argparse.ArgumentParser(prog="fricgen", description=__doc__)
     commands = main.add_subparsers(dest="command", required=True)
@@ -55,6 +137,24 @@ def parser() -> argparse.ArgumentParser:
     verify.add_argument("--calculus", choices=(*CALCULI, "all"), default="all")
     verify.add_argument("--json", action="store_true", help="print one JSON array, one object per law and calculus")
     verify.set_defaults(run=_verify)
+
+    generate = commands.add_parser("generate", help="derive, verify and emit Numba kernels into generated/")
+    generate.add_argument("laws", nargs="*", metavar="LAW", help="law names (default: the whole catalogue)")
+    generate.add_argument("--output", metavar="DIR", help="emit into DIR instead of the package's generated/ (for inspection)")
+    generate.set_defaults(run=_generate)
+
+    noise = commands.add_parser("noise", help="evaluate D(u) of a law through its generated kernels")
+    noise.add_argument("law", metavar="LAW")
+    noise.add_argument("--calculus", choices=CALCULI, default="ito")
+    noise.add_argument("--u", type=_floats, required=True, help="comma-separated tangential speeds u >= 0")
+    where = noise.add_mutually_exclusive_group()
+    where.add_argument("--r", type=float, help="centre distance; w = w(r) from the law's weight")
+    where.add_argument("--w", type=float, help="weight value w directly")
+    noise.add_argument("--param", type=_assignment, action="append", default=[], metavar="NAME=VALUE")
+    noise.add_argument("--mu", type=float, default=7.0, help="contact mobility (default 7: equal spheres m = 1, R = 1/2)")
+    noise.add_argument("--kT", type=float, default=1.0, help="thermal energy (default 1)")
+    noise.add_argument("--json", action="store_true", help="print JSON with u, D, f, w, r, mu, kT, parameters")
+    noise.set_defaults(run=_noise)
     return main
 
 

@@ -36,3 +36,38 @@ def test_unnamed_laws_skip_calculi_they_exclude():
 def test_unknown_law_is_a_clear_error():
     done = fricgen("verify", "no_such_law")
     assert done.returncode == 2 and "unknown law" in done.stderr and "coulomb_newton" in done.stderr
+
+
+def test_generate_is_idempotent_and_reports_verification(tmp_path):
+    first = fricgen("generate", "linear", "--output", str(tmp_path))
+    assert first.returncode == 0, first.stderr
+    assert "verified linear/ito" in first.stdout and "written" in first.stdout
+    second = fricgen("generate", "linear", "--output", str(tmp_path))
+    assert second.returncode == 0 and "written" not in second.stdout and "unchanged" in second.stdout
+
+
+def test_noise_json_through_the_generated_kernels():
+    import numpy as np
+    from scipy.special import erfcx
+
+    done = fricgen("noise", "coulomb", "--calculus", "stratonovich", "--u", "0,1,100", "--w", "2", "--mu", "7", "--json")
+    assert done.returncode == 0, done.stderr
+    result = json.loads(done.stdout)
+    a = 0.5 * 7.0
+    u = np.array(result["u"])
+    expected = 2 * 5.0 * np.sqrt(np.pi / (2 * a)) * erfcx(u / np.sqrt(2 * a))  # (F-31), kappa_f = 5
+    np.testing.assert_allclose(result["D"], expected, rtol=1e-12)
+
+
+def test_noise_weight_from_the_distance():
+    done = fricgen("noise", "linear", "--u", "1", "--r", "1.05", "--param", "gamma_f=2", "--json")
+    result = json.loads(done.stdout)
+    w = 48 / 1.05**13 - 24 / 1.05**7
+    assert abs(result["w"] - w) < 1e-12 * w and abs(result["D"][0] - 2 * w) < 1e-12 * w
+
+
+def test_noise_errors_are_clear():
+    assert "no kernels for the 'hk' calculus" in fricgen("noise", "coulomb", "--calculus", "hk", "--u", "1", "--w", "1").stderr
+    assert "give --r R" in fricgen("noise", "coulomb", "--u", "1").stderr
+    assert "no parameter" in fricgen("noise", "linear", "--u", "1", "--w", "1", "--param", "kappa_f=1").stderr
+    assert "expected comma-separated numbers" in fricgen("noise", "linear", "--u", "a,b", "--w", "1").stderr

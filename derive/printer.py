@@ -1,0 +1,95 @@
+"""SymPy printing for Numba kernels: numerically stable rewrites and a Python printer subclass.
+
+Rewrites (exact identities, applied before printing):
+
+- exp(A) erfc(B) -> erfcx(B) exp(A - B^2) with erfcx(x) = exp(x^2) erfc(x): the product
+  overflows/underflows for large arguments, erfcx ~ 1/(x sqrt(pi)) does not (PHYSICS.md);
+- c exp(x) - c -> c expm1(x): no cancellation for x -> 0 (branch thresholds of Min laws);
+- products of numeric constants -> one float literal (no runtime sqrt(pi) etc.).
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+from sympy.codegen.cfunctions import expm1
+from sympy.printing.pycode import PythonCodePrinter
+
+
+class erfcx(sp.Function):  # noqa: N801 - the conventional name of the function
+    """Scaled complementary error function erfcx(x) = exp(x^2) erfc(x)."""
+
+    nargs = 1
+
+    def fdiff(self, argindex=1):
+        x = self.args[0]
+        return 2 * x * erfcx(x) - 2 / sp.sqrt(sp.pi)
+
+    def _eval_rewrite_as_erfc(self, x, **kwargs):
+        return sp.exp(x**2) * sp.erfc(x)
+
+
+def _scaled_erfc(expr: sp.Mul) -> sp.Expr:
+    exps = [f for f in expr.args if isinstance(f, sp.exp)]
+    erfcs = [f for f in expr.args if isinstance(f, sp.erfc)]
+    if len(exps) != 1 or len(erfcs) != 1:
+        return expr
+    (growth,), (tail,) = exps, erfcs
+    rest = [f for f in expr.args if f is not growth and f is not tail]
+    b = tail.args[0]
+    return sp.Mul(*rest) * erfcx(b) * sp.exp(sp.expand(growth.args[0] - b**2))
+
+
+def _expm1_pairs(expr: sp.Add) -> sp.Expr:
+    terms = list(expr.args)
+    for i, term in enumerate(terms):
+        exps = [f for f in sp.Mul.make_args(term) if isinstance(f, sp.exp)]
+        if len(exps) != 1:
+            continue
+        coeff = sp.Mul(*[f for f in sp.Mul.make_args(term) if f is not exps[0]])
+        if -coeff in terms:
+            j = terms.index(-coeff)
+            rest = [t for k, t in enumerate(terms) if k not in (i, j)]
+            return _expm1_pairs(sp.Add(*rest, coeff * expm1(exps[0].args[0])))
+    return expr
+
+
+def _fold_constants(expr: sp.Mul) -> sp.Expr:
+    numbers = [f for f in expr.args if f.is_number]
+    if len(numbers) < 2 and not any(not f.is_Rational for f in numbers):
+        return expr
+    symbolic = [f for f in expr.args if not f.is_number]
+    value = sp.Float(sp.Mul(*numbers).evalf(25), 20)
+    return sp.Mul(value, *symbolic, evaluate=False) if symbolic else value
+
+
+def stabilize(expr: sp.Expr) -> sp.Expr:
+    """Apply the numerically stable rewrites to ``expr`` (mathematically exact).
+
+    Then powers with equal exponents are recombined, sqrt(kT) sqrt(mu) -> sqrt(kT mu): one square
+    root instead of two. SymPy splits such powers of positive symbols automatically, so the result
+    holds assumption-free symbols of the same names (it is meant for printing only; valid since
+    all symbols of a law are positive).
+    """
+    expr = expr.replace(lambda e: e.is_Mul, _scaled_erfc)
+    expr = expr.replace(lambda e: e.is_Add, _expm1_pairs)
+    plain = {x: sp.Symbol(x.name) for x in expr.free_symbols}
+    return sp.powsimp(expr.xreplace(plain), combine="base", force=True, deep=True)
+
+
+def fold_constants(expr: sp.Expr) -> sp.Expr:
+    """Evaluate products of numeric constants to 20-digit floats."""
+    return expr.replace(lambda e: e.is_Mul and any(f.is_number for f in e.args), _fold_constants)
+
+
+class KernelPrinter(PythonCodePrinter):
+    """Python printer for Numba nopython kernels (``math`` functions, ``erfcx`` from generated.special)."""
+
+    def __init__(self, settings=None):
+        defaults = {"standard": "python3", "fully_qualified_modules": True, "reserved_word_suffix": "_"}
+        super().__init__({**defaults, **(settings or {})})
+
+    def _print_erfcx(self, expr):
+        return f"erfcx({self._print(expr.args[0])})"
+
+    def _print_Float(self, expr):
+        return repr(float(expr))
