@@ -34,6 +34,21 @@ from .verification import Report, verify
 GENERATED = Path(__file__).resolve().parent.parent / "generated"
 SPECIAL_SOURCE = Path(__file__).with_name("kernel_sources") / "special.py"
 DECORATOR = '@numba.njit(cache=True, error_model="numpy")'
+#: Explicit signatures: the engines take these kernels as first-class functions (one compiled engine
+#: for every law), which needs each kernel compiled for exactly this signature.
+SIGNATURES = {
+    "r, params": "float64(float64, float64[::1])",
+    "x, params": "float64(float64, float64[::1])",
+    "u, w, r, params": "float64(float64, float64, float64, float64[::1])",
+    "u, w, r, mu, kT, params": "float64(float64, float64, float64, float64, float64, float64[::1])",
+}
+CONTACT_SIGNATURE = "UniTuple(float64, 2)(float64, float64, float64, float64, float64, float64[::1])"
+
+
+def _decorator(args: str, signature: str | None = None) -> str:
+    return f'@numba.njit("{signature or SIGNATURES[args]}", cache=True, error_model="numpy")'
+
+
 INDENT = "    "
 
 #: Gauss–Legendre order and panel refinement of the integral-form kernels (see _TAIL_KERNEL).
@@ -91,7 +106,7 @@ def _kernel(name: str, args: str, expr: sp.Expr, doc: str, parameters: list[sp.S
     expr = fold_constants(stabilize(expr))
     used = {x.name for x in expr.free_symbols}
     unpack = [f"{INDENT}{printer.doprint(p)} = params[{k}]" for k, p in enumerate(parameters) if p.name in used]
-    lines = [DECORATOR, f"def {name}({args}):", f"{INDENT}{_quote_doc(doc)}", *unpack, *guard, *_body(expr, printer)]
+    lines = [_decorator(args), f"def {name}({args}):", f"{INDENT}{_quote_doc(doc)}", *unpack, *guard, *_body(expr, printer)]
     return "\n".join(lines) + "\n"
 
 
@@ -188,17 +203,17 @@ def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, sou
         else:
             a = KernelPrinter().doprint(model.variance_scale)
             functions.append(
-                f"{DECORATOR}\ndef noise_amplitude_{c}({args}):\n"
+                f"{_decorator(args)}\ndef noise_amplitude_{c}({args}):\n"
                 f'{INDENT}"""D(u) for the {c} calculus: the integral (F-22) by quadrature."""\n'
                 f"{INDENT}return _gaussian_tail(u, {a}, w, r, params)\n"
             )
         functions.append(
-            f"{DECORATOR}\ndef noise_sqrt_{c}({args}):\n"
+            f"{_decorator(args)}\ndef noise_sqrt_{c}({args}):\n"
             f'{INDENT}"""sqrt(D), the amplitude of the random contact force."""\n'
             f"{INDENT}return math.sqrt(noise_amplitude_{c}({args}))\n"
         )
         functions.append(
-            f"{DECORATOR}\ndef contact_{c}({args}):\n"
+            f"{_decorator(args, CONTACT_SIGNATURE)}\ndef contact_{c}({args}):\n"
             f'{INDENT}"""(f/u, sqrt(D)) of one contact for the {c} calculus."""\n'
             f"{INDENT}return friction_over_u(u, w, r, params), noise_sqrt_{c}({args})\n"
         )

@@ -129,6 +129,41 @@ def _noise(args: argparse.Namespace) -> int:
     return 0
 
 
+def _thermostat_check(args: argparse.Namespace) -> int:
+    """fricgen thermostat-check LAW ...: the statistical test of a law's thermostat, as JSON."""
+    from fricgen.kernels import KernelError
+    from fricgen.simulation import SimulationError
+    from fricgen.thermostat_check import thermostat_check
+
+    try:
+        result = thermostat_check(
+            args.law,
+            dim=args.dim,
+            calculus=args.calculus,
+            contact_noise=not args.no_contact_noise,
+            n=args.n,
+            phi=args.phi,
+            dt=args.dt,
+            total_time=args.time,
+            seed=args.seed,
+            parameters=dict(args.param),
+            solvent=not args.no_solvent,
+        )
+    except (KernelError, SimulationError, ValueError) as error:
+        print(f"fricgen thermostat-check: {error}", file=sys.stderr)
+        return 2
+    if args.json:
+        print(json.dumps(result.as_dict(), indent=2))
+    else:
+        r = result
+        print(
+            f"{r.law} ({r.calculus}, {r.dim}-D, contact noise {'on' if r.contact_noise else 'off'}): "
+            f"T_trans = {r.T_trans:.4f} +- {r.T_trans_err:.4f}, T_rot = {r.T_rot:.4f} +- {r.T_rot_err:.4f}, "
+            f"KL = {r.kl_trans:.1e} / {r.kl_rot:.1e}: {'passed' if r.passed else 'FAILED'} ({r.seconds:.1f} s)"
+        )
+    return 0 if result.passed else 1
+
+
 def parser() -> argparse.ArgumentParser:
     main = argparse.ArgumentParser(prog="fricgen", description=__doc__)
     commands = main.add_subparsers(dest="command", required=True)
@@ -155,6 +190,21 @@ def parser() -> argparse.ArgumentParser:
     noise.add_argument("--kT", type=float, default=1.0, help="thermal energy (default 1)")
     noise.add_argument("--json", action="store_true", help="print JSON with u, D, f, w, r, mu, kT, parameters")
     noise.set_defaults(run=_noise)
+
+    check = commands.add_parser("thermostat-check", help="statistical test: does the law thermalise a passive system to kT?")
+    check.add_argument("law", metavar="LAW")
+    check.add_argument("--dim", type=int, choices=(2, 3), default=2)
+    check.add_argument("--calculus", choices=CALCULI, default="ito")
+    check.add_argument("--no-contact-noise", action="store_true", help="drop the frictional noise (the inconsistent model)")
+    check.add_argument("--no-solvent", action="store_true", help="friction thermostat alone (gamma = gamma_R = 0)")
+    check.add_argument("--n", type=int, help="particles (default 256 in 2-D, 216 in 3-D)")
+    check.add_argument("--phi", type=float, help="packing fraction (default 0.6 in 2-D, 0.3 in 3-D)")
+    check.add_argument("--dt", type=float, default=1e-3)
+    check.add_argument("--time", type=float, default=40.0, help="simulated time (the first 10%% equilibrates)")
+    check.add_argument("--seed", type=int, default=1)
+    check.add_argument("--param", type=_assignment, action="append", default=[], metavar="NAME=VALUE")
+    check.add_argument("--json", action="store_true")
+    check.set_defaults(run=_thermostat_check)
     return main
 
 

@@ -113,3 +113,11 @@ def load_law_kernels(name: str, catalogue: Path = CATALOGUE) -> LawKernels:
     if module.SOURCE_HASH != digest:
         raise KernelError(f"the kernels of law {name} are stale: {path} changed after they were generated; run `fricgen generate {name}`")
     return LawKernels(name, module)
+
+
+def load_potential(name: str) -> ModuleType:
+    """Generated potential module (energy(x, params), force(x, params), PARAMETERS, DEFAULTS)."""
+    try:
+        return importlib.import_module(f"generated.potentials.{name}")
+    except ModuleNotFoundError as error:
+        raise KernelError(f"no generated potential {name!r}: run `fricgen generate`") from error

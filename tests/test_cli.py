@@ -71,3 +71,18 @@ def test_noise_errors_are_clear():
     assert "give --r R" in fricgen("noise", "coulomb", "--u", "1").stderr
     assert "no parameter" in fricgen("noise", "linear", "--u", "1", "--w", "1", "--param", "kappa_f=1").stderr
     assert "expected comma-separated numbers" in fricgen("noise", "linear", "--u", "a,b", "--w", "1").stderr
+
+
+def test_thermostat_check_json():
+    done = fricgen("thermostat-check", "coulomb_newton", "--time", "10", "--seed", "3", "--json")
+    assert done.returncode == 0, done.stderr
+    result = json.loads(done.stdout)
+    for key in ("T_trans", "T_rot", "T_trans_err", "T_rot_err", "kl_trans", "kl_rot", "passed"):
+        assert key in result
+    assert result["passed"] is True and abs(result["T_trans"] - 1) < 4 * result["T_trans_err"]
+
+
+def test_thermostat_check_fails_without_contact_noise():
+    done = fricgen("thermostat-check", "coulomb_newton", "--no-contact-noise", "--time", "10", "--json")
+    assert done.returncode == 1 and json.loads(done.stdout)["passed"] is False
+    assert "no kernels for the 'hk' calculus" in fricgen("thermostat-check", "coulomb", "--calculus", "hk").stderr

@@ -25,7 +25,7 @@ CLOSED_FORM = {'ito': True, 'stratonovich': True}
 HAS_WEIGHT = True
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64[::1])", cache=True, error_model="numpy")
 def weight(r, params):
     """w(r) = wca (-dU/dr for a potential)."""
     epsilon = params[1]
@@ -36,14 +36,14 @@ def weight(r, params):
     return 0
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def friction(u, w, r, params):
     """f(u, w, r) = w*kappa_f (force)."""
     kappa_f = params[0]
     return kappa_f*w
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def friction_over_u(u, w, r, params):
     """f/u, the factor of the tangential velocity."""
     kappa_f = params[0]
@@ -52,7 +52,7 @@ def friction_over_u(u, w, r, params):
     return kappa_f*w/u
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def noise_amplitude_ito(u, w, r, mu, kT, params):
     """D(u) for the ito calculus."""
     kappa_f = params[0]
@@ -60,19 +60,19 @@ def noise_amplitude_ito(u, w, r, mu, kT, params):
     return 1.2533141373155003*cse0*kappa_f*w*erfcx(0.7071067811865476*cse0*u)
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def noise_sqrt_ito(u, w, r, mu, kT, params):
     """sqrt(D), the amplitude of the random contact force."""
     return math.sqrt(noise_amplitude_ito(u, w, r, mu, kT, params))
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("UniTuple(float64, 2)(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def contact_ito(u, w, r, mu, kT, params):
     """(f/u, sqrt(D)) of one contact for the ito calculus."""
     return friction_over_u(u, w, r, params), noise_sqrt_ito(u, w, r, mu, kT, params)
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def noise_amplitude_stratonovich(u, w, r, mu, kT, params):
     """D(u) for the stratonovich calculus."""
     kappa_f = params[0]
@@ -80,13 +80,13 @@ def noise_amplitude_stratonovich(u, w, r, mu, kT, params):
     return 1.772453850905516*cse0*kappa_f*w*erfcx(cse0*u)
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def noise_sqrt_stratonovich(u, w, r, mu, kT, params):
     """sqrt(D), the amplitude of the random contact force."""
     return math.sqrt(noise_amplitude_stratonovich(u, w, r, mu, kT, params))
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("UniTuple(float64, 2)(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def contact_stratonovich(u, w, r, mu, kT, params):
     """(f/u, sqrt(D)) of one contact for the stratonovich calculus."""
     return friction_over_u(u, w, r, params), noise_sqrt_stratonovich(u, w, r, mu, kT, params)

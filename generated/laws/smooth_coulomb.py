@@ -26,7 +26,7 @@ _GL_NODES = (-0.9739065285171717, -0.8650633666889845, -0.6794095682990244, -0.4
 _GL_WEIGHTS = (0.06667134430868814, 0.1494513491505806, 0.21908636251598204, 0.26926671930999635, 0.29552422471475287, 0.29552422471475287, 0.26926671930999635, 0.21908636251598204, 0.1494513491505806, 0.06667134430868814,)
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64[::1])", cache=True, error_model="numpy")
 def weight(r, params):
     """w(r) = wca (-dU/dr for a potential)."""
     epsilon = params[2]
@@ -37,7 +37,7 @@ def weight(r, params):
     return 0
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def friction(u, w, r, params):
     """f(u, w, r) = w*kappa_f*tanh(u/u0) (force)."""
     kappa_f = params[0]
@@ -45,7 +45,7 @@ def friction(u, w, r, params):
     return kappa_f*w*math.tanh(u/u0)
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def friction_over_u(u, w, r, params):
     """f/u, the factor of the tangential velocity."""
     kappa_f = params[0]
@@ -79,43 +79,43 @@ def _gaussian_tail(u, a, w, r, params):
         hi = 2.0 * hi
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def noise_amplitude_ito(u, w, r, mu, kT, params):
     """D(u) for the ito calculus: the integral (F-22) by quadrature."""
     return _gaussian_tail(u, kT*mu, w, r, params)
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def noise_sqrt_ito(u, w, r, mu, kT, params):
     """sqrt(D), the amplitude of the random contact force."""
     return math.sqrt(noise_amplitude_ito(u, w, r, mu, kT, params))
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("UniTuple(float64, 2)(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def contact_ito(u, w, r, mu, kT, params):
     """(f/u, sqrt(D)) of one contact for the ito calculus."""
     return friction_over_u(u, w, r, params), noise_sqrt_ito(u, w, r, mu, kT, params)
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def noise_amplitude_stratonovich(u, w, r, mu, kT, params):
     """D(u) for the stratonovich calculus: the integral (F-22) by quadrature."""
     return _gaussian_tail(u, (1/2)*kT*mu, w, r, params)
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def noise_sqrt_stratonovich(u, w, r, mu, kT, params):
     """sqrt(D), the amplitude of the random contact force."""
     return math.sqrt(noise_amplitude_stratonovich(u, w, r, mu, kT, params))
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("UniTuple(float64, 2)(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def contact_stratonovich(u, w, r, mu, kT, params):
     """(f/u, sqrt(D)) of one contact for the stratonovich calculus."""
     return friction_over_u(u, w, r, params), noise_sqrt_stratonovich(u, w, r, mu, kT, params)
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def noise_amplitude_hk(u, w, r, mu, kT, params):
     """D(u) for the hk calculus."""
     kappa_f = params[0]
@@ -125,13 +125,13 @@ def noise_amplitude_hk(u, w, r, mu, kT, params):
     return kappa_f*w*math.tanh(u/u0)/u
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def noise_sqrt_hk(u, w, r, mu, kT, params):
     """sqrt(D), the amplitude of the random contact force."""
     return math.sqrt(noise_amplitude_hk(u, w, r, mu, kT, params))
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("UniTuple(float64, 2)(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def contact_hk(u, w, r, mu, kT, params):
     """(f/u, sqrt(D)) of one contact for the hk calculus."""
     return friction_over_u(u, w, r, params), noise_sqrt_hk(u, w, r, mu, kT, params)

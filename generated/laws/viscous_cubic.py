@@ -23,7 +23,7 @@ CLOSED_FORM = {'ito': True, 'stratonovich': True, 'hk': True}
 HAS_WEIGHT = True
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64[::1])", cache=True, error_model="numpy")
 def weight(r, params):
     """w(r) = wca (-dU/dr for a potential)."""
     epsilon = params[2]
@@ -34,7 +34,7 @@ def weight(r, params):
     return 0
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def friction(u, w, r, params):
     """f(u, w, r) = w*(gamma_f*u + beta_f*u**3) (force)."""
     gamma_f = params[0]
@@ -42,7 +42,7 @@ def friction(u, w, r, params):
     return u*w*(beta_f*u**2 + gamma_f)
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def friction_over_u(u, w, r, params):
     """f/u, the factor of the tangential velocity."""
     gamma_f = params[0]
@@ -52,7 +52,7 @@ def friction_over_u(u, w, r, params):
     return w*(beta_f*u**2 + gamma_f)
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def noise_amplitude_ito(u, w, r, mu, kT, params):
     """D(u) for the ito calculus."""
     gamma_f = params[0]
@@ -60,19 +60,19 @@ def noise_amplitude_ito(u, w, r, mu, kT, params):
     return w*(2*beta_f*kT*mu + beta_f*u**2 + gamma_f)
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def noise_sqrt_ito(u, w, r, mu, kT, params):
     """sqrt(D), the amplitude of the random contact force."""
     return math.sqrt(noise_amplitude_ito(u, w, r, mu, kT, params))
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("UniTuple(float64, 2)(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def contact_ito(u, w, r, mu, kT, params):
     """(f/u, sqrt(D)) of one contact for the ito calculus."""
     return friction_over_u(u, w, r, params), noise_sqrt_ito(u, w, r, mu, kT, params)
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def noise_amplitude_stratonovich(u, w, r, mu, kT, params):
     """D(u) for the stratonovich calculus."""
     gamma_f = params[0]
@@ -80,19 +80,19 @@ def noise_amplitude_stratonovich(u, w, r, mu, kT, params):
     return w*(beta_f*kT*mu + beta_f*u**2 + gamma_f)
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def noise_sqrt_stratonovich(u, w, r, mu, kT, params):
     """sqrt(D), the amplitude of the random contact force."""
     return math.sqrt(noise_amplitude_stratonovich(u, w, r, mu, kT, params))
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("UniTuple(float64, 2)(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def contact_stratonovich(u, w, r, mu, kT, params):
     """(f/u, sqrt(D)) of one contact for the stratonovich calculus."""
     return friction_over_u(u, w, r, params), noise_sqrt_stratonovich(u, w, r, mu, kT, params)
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def noise_amplitude_hk(u, w, r, mu, kT, params):
     """D(u) for the hk calculus."""
     gamma_f = params[0]
@@ -100,13 +100,13 @@ def noise_amplitude_hk(u, w, r, mu, kT, params):
     return w*(beta_f*u**2 + gamma_f)
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def noise_sqrt_hk(u, w, r, mu, kT, params):
     """sqrt(D), the amplitude of the random contact force."""
     return math.sqrt(noise_amplitude_hk(u, w, r, mu, kT, params))
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("UniTuple(float64, 2)(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy")
 def contact_hk(u, w, r, mu, kT, params):
     """(f/u, sqrt(D)) of one contact for the hk calculus."""
     return friction_over_u(u, w, r, params), noise_sqrt_hk(u, w, r, mu, kT, params)

@@ -13,7 +13,7 @@ PARAMETERS = ('U0', 'lambda')
 DEFAULTS = (6.0, 1.0)
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64[::1])", cache=True, error_model="numpy")
 def energy(x, params):
     """U(x) = U0*cos(2*pi*x/lambda)/2"""
     U0 = params[0]
@@ -21,7 +21,7 @@ def energy(x, params):
     return (1/2)*U0*math.cos(6.283185307179586*x/lambda_)
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64[::1])", cache=True, error_model="numpy")
 def force(x, params):
     """-dU/dx"""
     U0 = params[0]

@@ -13,7 +13,7 @@ PARAMETERS = ('gamma', 'p', 'eps', 'sigma', 'kT')
 DEFAULTS = (1.0, 3.0, 0.05, 1.0, 1.0)
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64[::1])", cache=True, error_model="numpy")
 def energy(r, params):
     """U(r) = Piecewise((-kT*log(eps**(-p - 1)*gamma*(p + 1)*(eps - r + sigma)**p + 1), r < eps + sigma), (0, True))"""
     gamma = params[0]
@@ -27,7 +27,7 @@ def energy(r, params):
     return 0
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64[::1])", cache=True, error_model="numpy")
 def force(r, params):
     """-dU/dr"""
     gamma = params[0]

@@ -13,7 +13,7 @@ PARAMETERS = ('epsilon', 'sigma')
 DEFAULTS = (1.0, 1.0)
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64[::1])", cache=True, error_model="numpy")
 def energy(r, params):
     """U(r) = Piecewise((4*epsilon*(-sigma**6/r**6 + sigma**12/r**12) + epsilon, r <= 2**(1/6)*sigma), (0, True))"""
     epsilon = params[0]
@@ -24,7 +24,7 @@ def energy(r, params):
     return 0
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit("float64(float64, float64[::1])", cache=True, error_model="numpy")
 def force(r, params):
     """-dU/dr"""
     epsilon = params[0]
