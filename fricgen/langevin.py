@@ -1,26 +1,25 @@
 """Compiled Langevin dynamics of frictional spheres (F-35..40) in 2-D and 3-D.
 
 One code path with 3-vectors: in 2-D, z = 0, spins are along z and the contact noise acts along
-the single tangent t = z x r_hat (PHYSICS.md, 2-D reduction). One step of length dt:
+the single tangent t = z x r_hat (PHYSICS.md, 2-D reduction). A step of length dt is the splitting
+B A O A C B:
 
-Splitting B A O A C B (BAOAB with the contact kick C next to the last half kick):
-B: v += (dt/2) F/m with F = -dU/dr (WCA by default) + F0 e1 + F_bulk; A: x += v dt/2 and the
-orientation turns by omega dt/2; O: the solvent part, exact; C: friction and contact noise.
+- B: v += (dt/2) F/m with F = -dU/dr (WCA by default) + F0 e1 (active) + F_bulk;
+- A: x += v dt/2 and the orientation turns by omega dt/2 (q <- exp(omega dt/4) q, lab frame);
+- O: solvent, exact Ornstein–Uhlenbeck v <- c v + sqrt(kT (1 - c^2)/m) xi, c = exp(-gamma dt/m)
+  (gamma_R, I for omega): no time-step bias of the solvent part;
+- C: contact kick v += dt F_f/m + J/m (omega likewise with torques), F_f = (f/u) u_perp and
+  tau_f = R_i r_hat x F_f (F-5..8), J = sqrt(D) sqrt(2 kT dt) P z (3-D) or sqrt(D) sqrt(2 kT dt) z t
+  (2-D) with z keyed on (seed, step, i, k). D is taken where the calculus demands: at the start
+  (Itô, Euler–Maruyama), averaged over start and predicted end (Stratonovich, stochastic Heun) or
+  at the predicted end (Hänggi–Klimontovich); the prediction is the Euler–Maruyama kick, same z.
 
-1. pair pass at (x, v, omega): conservative force, deterministic friction
-   F_i = (f/u) u_perp, tau_i = R_i r_hat x F_i (F-5..8), and the contact noise impulse
-   sqrt(D) sqrt(2 kT dt) P z (3-D) or sqrt(D) sqrt(2 kT dt) z t (2-D), with z keyed on
-   (seed, step, min(i,k), max(i,k)); F_k = -F_i, tau_k = (R_k/R_i) tau_i.
-2. contact kick v += dt F_friction/m + impulse/m (same for omega with torques), with the
-   contact noise amplitude evaluated as the calculus demands: Euler–Maruyama at the start (Itô),
-   stochastic Heun, the average of start and predicted end (Stratonovich), or the predicted end
-   point (Hänggi–Klimontovich); the predicted point is the Euler–Maruyama kick, same z.
-3. solvent: exact Ornstein–Uhlenbeck update v <- c v + sqrt(kT (1 - c^2)/m) xi, c = exp(-gamma dt/m)
-   (and gamma_R, I for omega): no time-step bias of the solvent part.
-4. drift: x += v dt/2, orientation q <- exp(omega dt/4) q (lab-frame angular velocity), twice.
-
-Immobile (wall) particles have inverse mass and inertia 0: they never move, and enter the contact
-mobility mu_ik = 1/m_i + 1/m_k + R_i^2/I_i + R_k^2/I_k with zero terms.
+Each pair i < k is computed once into its slot of the neighbour list; particle k receives -F and
+the same torque direction (tau_k = R_k r_hat x F_i). Per-particle sums run in the sorted order of
+the neighbour lists: results do not depend on the thread count. Immobile (wall) particles have
+inverse mass and inertia 0: they never move, and drop out of mu_ik = 1/m_i + 1/m_k + R_i^2/I_i +
+R_k^2/I_k. Kernels enter as first-class functions with explicit signatures (as derive.emit prints
+them): the engine is compiled once for every law and cached on disk.
 """
 
 from __future__ import annotations
@@ -32,20 +31,23 @@ import numpy as np
 from numba import types
 
 from .neighbors import build_neighbors, minimum_image
-from .rng import CONTACT, SOLVENT, normal_pair
+from .rng import CONTACT, SOLVENT, normal_pair_at, stream_key
 
-# Kernels enter as first-class functions (explicit signatures, emitted so by derive.emit): the
-# engine is compiled once for every law and cached on disk.
-_F, _I, _B = types.float64, types.int64, types.boolean
+_F, _I, _B, _U = types.float64, types.int64, types.boolean, types.uint64
 _V, _M, _L = types.Array(_F, 1, "C"), types.Array(_F, 2, "C"), types.Array(_I, 1, "C")
+_T = types.Array(_F, 3, "C")
 SCALAR_KERNEL = types.FunctionType(_F(_F, _V))  # weight(r, params), potential force(r, params)
 CONTACT_KERNEL = types.FunctionType(types.UniTuple(_F, 2)(_F, _F, _F, _F, _F, _V))  # (f/u, sqrt(D))
 
 WCA_RANGE = 2.0 ** (1.0 / 6.0)
 ITO, STRATONOVICH, HK = 0, 1, 2
+OK, NOT_FINITE, OVERLAP = 0, 1, 2  # status of advance()
 
-# status codes of advance()
-OK, NOT_FINITE, OVERLAP = 0, 1, 2
+#: Per pair i < k, in the slot of (i, k): conservative force on i (0:3), friction force on i (3:6),
+#: r_hat x friction force (6:9), noise impulse on i (9:12), r_hat x noise impulse (12:15).
+PAIR_FIELDS = 15
+#: terms[j, i, :] of a pass: force, friction, friction torque, noise impulse, noise torque impulse.
+TERMS = 5
 
 
 @numba.njit(inline="always", cache=True)
@@ -53,102 +55,48 @@ def _cross(a0, a1, a2, b0, b1, b2):
     return a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
 
 
+@numba.njit(_F(_F, _V), cache=True)
+def no_weight(r, params):
+    """w = 1 for laws without a distance weight (friction acts within the potential's range)."""
+    return 1.0
+
+
 @numba.njit(
-    _F(
-        _M,
-        _M,
-        _M,
-        _V,
-        _V,
-        _V,
-        _V,
-        _I,
-        _L,
-        _L,
-        SCALAR_KERNEL,
-        _V,
-        CONTACT_KERNEL,
-        SCALAR_KERNEL,
-        _V,
-        _B,
-        _F,
-        _F,
-        _I,
-        _I,
-        _B,
-        _B,
-        _B,
-        _M,
-        _M,
-        _M,
-        _M,
-        _M,
-    ),
+    _F(_M, _M, _M, _V, _V, _V, _V, _V, _I, _L, _L, SCALAR_KERNEL, _V, CONTACT_KERNEL, SCALAR_KERNEL, _V, _B, _F, _F, _U, _B, _B, _B, _M),
     parallel=True,
     cache=True,
 )
-def pair_pass(
-    pos,
-    vel,
-    omega,
-    radius,
-    inv_mass,
-    inv_inertia,
-    box,
-    dims,
-    start,
-    neighbors,
-    pot_force,
-    pot_params,
-    contact,
-    weight,
-    law_params,
-    has_weight,
-    kT,
-    dt,
-    seed,
-    step,
-    friction_on,
-    noise_on,
-    conservative,
-    out_force,
-    out_fric,
-    out_tfric,
-    out_kick,
-    out_tkick,
-):
-    """Per-particle sums over neighbours (fixed index order); returns the smallest r/sigma_ik."""
+def pair_slots(pos, vel, omega, radius, inv_mass, inv_inertia, box, inv_box, dims, start, neighbors, pot_force, pot_params,
+               contact, weight, law_params, has_weight, kT, dt, noise_key, friction_on, noise_on, conservative, slots):  # fmt: skip
+    """Pair quantities of every pair i < k within range, computed once; returns min r / sigma_ik."""
     size = pos.shape[0]
-    closest = np.empty(size)
+    closest = np.full(size, np.inf)
     noise_scale = math.sqrt(2.0 * kT * dt)
     for i in numba.prange(size):
-        fx = fy = fz = 0.0
-        gx = gy = gz = 0.0
-        tx = ty = tz = 0.0
-        kx = ky = kz = 0.0
-        sx = sy = sz = 0.0
-        nearest = np.inf
         ri = radius[i]
         for slot in range(start[i], start[i + 1]):
             k = neighbors[slot]
-            dx = minimum_image(pos[k, 0] - pos[i, 0], box[0])
-            dy = minimum_image(pos[k, 1] - pos[i, 1], box[1])
-            dz = minimum_image(pos[k, 2] - pos[i, 2], box[2]) if dims == 3 else 0.0
+            if k < i:
+                continue
+            out = slots[slot]
+            out[:] = 0.0
+            dx = minimum_image(pos[k, 0] - pos[i, 0], box[0], inv_box[0])
+            dy = minimum_image(pos[k, 1] - pos[i, 1], box[1], inv_box[1])
+            dz = minimum_image(pos[k, 2] - pos[i, 2], box[2], inv_box[2]) if dims == 3 else 0.0
             r2 = dx * dx + dy * dy + dz * dz
-            sigma = ri + radius[k]
-            if r2 >= (WCA_RANGE * sigma) ** 2:
+            rk = radius[k]
+            sigma = ri + rk
+            reach = WCA_RANGE * sigma
+            if r2 >= reach * reach:
                 continue
             r = math.sqrt(r2)
-            nearest = min(nearest, r / sigma)
+            closest[i] = min(closest[i], r / sigma)
             nx, ny, nz = dx / r, dy / r, dz / r
             if conservative:
                 magnitude = pot_force(r / sigma, pot_params) / sigma  # -dU/dr, scaled to sigma_ik
-                fx -= magnitude * nx
-                fy -= magnitude * ny
-                fz -= magnitude * nz
+                out[0], out[1], out[2] = -magnitude * nx, -magnitude * ny, -magnitude * nz
             if not friction_on:
                 continue
-            rk = radius[k]
             # u_perp = P (v_k - v_i) - (R_i w_i + R_k w_k) x n   (F-4)
             wx = ri * omega[i, 0] + rk * omega[k, 0]
             wy = ri * omega[i, 1] + rk * omega[k, 1]
@@ -161,49 +109,34 @@ def pair_pass(
             w = weight(r / sigma, law_params) / sigma if has_weight else 1.0
             mu = inv_mass[i] + inv_mass[k] + ri * ri * inv_inertia[i] + rk * rk * inv_inertia[k]
             ratio, root = contact(u, w, r, mu, kT, law_params)
-            ffx, ffy, ffz = ratio * ux, ratio * uy, ratio * uz
-            gx += ffx
-            gy += ffy
-            gz += ffz
-            qx, qy, qz = _cross(nx, ny, nz, ffx, ffy, ffz)
-            tx += ri * qx
-            ty += ri * qy
-            tz += ri * qz
+            out[3], out[4], out[5] = ratio * ux, ratio * uy, ratio * uz
+            out[6], out[7], out[8] = _cross(nx, ny, nz, out[3], out[4], out[5])
             if noise_on:
-                lo, hi = min(i, k), max(i, k)
                 amplitude = root * noise_scale
-                if dims == 3:
-                    z0, z1 = normal_pair(seed, step, CONTACT, lo, hi, 0)
-                    z2 = normal_pair(seed, step, CONTACT, lo, hi, 1)[0]
-                    sign = 1.0 if i < k else -1.0
+                if dims == 3:  # P z: one random tangential force (PHYSICS.md)
+                    z0, z1 = normal_pair_at(noise_key, i, k, 0)
+                    z2 = normal_pair_at(noise_key, i, k, 1)[0]
                     zn = z0 * nx + z1 * ny + z2 * nz
-                    ex = sign * amplitude * (z0 - zn * nx)
-                    ey = sign * amplitude * (z1 - zn * ny)
-                    ez = sign * amplitude * (z2 - zn * nz)
-                else:
-                    z0 = normal_pair(seed, step, CONTACT, lo, hi, 0)[0]
-                    ex, ey, ez = -amplitude * z0 * ny, amplitude * z0 * nx, 0.0
-                kx += ex
-                ky += ey
-                kz += ez
-                qx, qy, qz = _cross(nx, ny, nz, ex, ey, ez)
-                sx += ri * qx
-                sy += ri * qy
-                sz += ri * qz
-        closest[i] = nearest
-        if conservative:
-            out_force[i, 0], out_force[i, 1], out_force[i, 2] = fx, fy, fz
-        out_fric[i, 0], out_fric[i, 1], out_fric[i, 2] = gx, gy, gz
-        out_tfric[i, 0], out_tfric[i, 1], out_tfric[i, 2] = tx, ty, tz
-        out_kick[i, 0], out_kick[i, 1], out_kick[i, 2] = kx, ky, kz
-        out_tkick[i, 0], out_tkick[i, 1], out_tkick[i, 2] = sx, sy, sz
+                    out[9], out[10], out[11] = amplitude * (z0 - zn * nx), amplitude * (z1 - zn * ny), amplitude * (z2 - zn * nz)
+                else:  # along t = z x n
+                    z0 = normal_pair_at(noise_key, i, k, 0)[0]
+                    out[9], out[10] = -amplitude * z0 * ny, amplitude * z0 * nx
+                out[12], out[13], out[14] = _cross(nx, ny, nz, out[9], out[10], out[11])
     return closest.min() if size else np.inf
 
 
-@numba.njit(_F(_F, _V), cache=True)
-def no_weight(r, params):
-    """w = 1 for laws without a distance weight (friction acts within the potential's range)."""
-    return 1.0
+@numba.njit(types.none(_V, _L, _L, _L, _M, _T), parallel=True, cache=True)
+def gather(radius, start, neighbors, reverse, slots, terms):
+    """terms[:, i] = sums over i's pairs in the sorted order of its list (-F and R_k torques for k > i)."""
+    for i in numba.prange(radius.size):
+        terms[:, i, :] = 0.0
+        for slot in range(start[i], start[i + 1]):
+            source, sign = (slot, 1.0) if neighbors[slot] > i else (reverse[slot], -1.0)
+            values = slots[source]
+            for j in range(TERMS):
+                scale = radius[i] if j == 2 or j == 4 else sign  # torques: R_i r_hat x F for both partners
+                for a in range(3):
+                    terms[j, i, a] += scale * values[3 * j + a]
 
 
 @numba.njit(inline="always", cache=True)
@@ -216,10 +149,10 @@ def _body_x(q):
 @numba.njit(inline="always", cache=True)
 def _rotate(q, wx, wy, wz, dt):
     """q <- exp(omega dt/2) q: exact rotation by the lab-frame angle omega dt."""
-    angle = math.sqrt(wx * wx + wy * wy + wz * wz) * dt
-    if angle == 0.0:
+    rate = math.sqrt(wx * wx + wy * wy + wz * wz)
+    if rate == 0.0:
         return
-    c, s = math.cos(0.5 * angle), math.sin(0.5 * angle) / (angle / dt)
+    c, s = math.cos(0.5 * rate * dt), math.sin(0.5 * rate * dt) / rate
     a0, a1, a2, a3 = c, s * wx, s * wy, s * wz
     b0, b1, b2, b3 = q[0], q[1], q[2], q[3]
     q0 = a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3
@@ -243,35 +176,35 @@ def _half_kick(vel, quat, inv_mass, dims, dt, active, bulk, force):
 
 
 @numba.njit(parallel=True, cache=True)
-def _contact_kick(vel, omega, inv_mass, inv_inertia, dims, dt, fric, tfric, kick, tkick, vnew, wnew):
+def _contact_kick(vel, omega, inv_mass, inv_inertia, dims, dt, terms, vnew, wnew):
     """Euler–Maruyama contact kick (the Itô step and the predictor of the other schemes)."""
     for i in numba.prange(vel.shape[0]):
         for a in range(3):
-            vnew[i, a] = vel[i, a] + inv_mass[i] * (dt * fric[i, a] + kick[i, a])
-            wnew[i, a] = omega[i, a] + inv_inertia[i] * (dt * tfric[i, a] + tkick[i, a])
+            vnew[i, a] = vel[i, a] + inv_mass[i] * (dt * terms[1, i, a] + terms[3, i, a])
+            wnew[i, a] = omega[i, a] + inv_inertia[i] * (dt * terms[2, i, a] + terms[4, i, a])
         if dims == 2:
             vnew[i, 2] = 0.0
             wnew[i, 0] = wnew[i, 1] = 0.0
 
 
 @numba.njit(parallel=True, cache=True)
-def _correct(scheme, vnew, wnew, inv_mass, inv_inertia, dims, dt, fric, tfric, kick, tkick, fric2, tfric2, kick2, tkick2):
+def _correct(scheme, vnew, wnew, inv_mass, inv_inertia, dt, terms, again):
     """Replace the predictor's contact terms: Heun averages start and end, HK takes the end-point noise."""
     for i in numba.prange(vnew.shape[0]):
         for a in range(3):
             if scheme == STRATONOVICH:
-                dv = 0.5 * (dt * (fric2[i, a] - fric[i, a]) + kick2[i, a] - kick[i, a])
-                dw = 0.5 * (dt * (tfric2[i, a] - tfric[i, a]) + tkick2[i, a] - tkick[i, a])
+                dv = 0.5 * (dt * (again[1, i, a] - terms[1, i, a]) + again[3, i, a] - terms[3, i, a])
+                dw = 0.5 * (dt * (again[2, i, a] - terms[2, i, a]) + again[4, i, a] - terms[4, i, a])
             else:
-                dv = kick2[i, a] - kick[i, a]
-                dw = tkick2[i, a] - tkick[i, a]
+                dv = again[3, i, a] - terms[3, i, a]
+                dw = again[4, i, a] - terms[4, i, a]
             vnew[i, a] += inv_mass[i] * dv
             wnew[i, a] += inv_inertia[i] * dw
 
 
 @numba.njit(parallel=True, cache=True)
-def _solvent(vel, omega, inv_mass, inv_inertia, dims, dt, kT, gamma, gamma_rot, seed, step):
-    """Exact Ornstein–Uhlenbeck update v <- c v + sqrt(kT (1 - c^2)/m) xi (mobile particles)."""
+def _solvent(vel, omega, inv_mass, inv_inertia, dims, dt, kT, gamma, gamma_rot, key):
+    """Exact Ornstein–Uhlenbeck update of v and omega (mobile particles), noise keyed on (key, i)."""
     for i in numba.prange(vel.shape[0]):
         if inv_mass[i] == 0.0:
             continue
@@ -279,16 +212,16 @@ def _solvent(vel, omega, inv_mass, inv_inertia, dims, dt, kT, gamma, gamma_rot, 
         spread = math.sqrt(kT * inv_mass[i] * (1.0 - c * c))
         cr = math.exp(-gamma_rot * inv_inertia[i] * dt)
         spread_rot = math.sqrt(kT * inv_inertia[i] * (1.0 - cr * cr))
-        z0, z1 = normal_pair(seed, step, SOLVENT, i, 0, 0)
-        z2, z3 = normal_pair(seed, step, SOLVENT, i, 0, 1)
-        z4, z5 = normal_pair(seed, step, SOLVENT, i, 0, 2)
+        z0, z1 = normal_pair_at(key, i, 0, 0)
+        z2, z3 = normal_pair_at(key, i, 0, 1)
         vel[i, 0] = c * vel[i, 0] + spread * z0
         vel[i, 1] = c * vel[i, 1] + spread * z1
+        omega[i, 2] = cr * omega[i, 2] + spread_rot * z3
         if dims == 3:
+            z4, z5 = normal_pair_at(key, i, 0, 2)
             vel[i, 2] = c * vel[i, 2] + spread * z2
             omega[i, 0] = cr * omega[i, 0] + spread_rot * z4
             omega[i, 1] = cr * omega[i, 1] + spread_rot * z5
-        omega[i, 2] = cr * omega[i, 2] + spread_rot * z3
 
 
 @numba.njit(parallel=True, cache=True)
@@ -303,71 +236,27 @@ def _drift(pos, quat, vel, omega, inv_mass, box, dims, h):
         _rotate(quat[i], omega[i, 0], omega[i, 1], omega[i, 2], h)
 
 
+@numba.njit(cache=True)
+def _moved(pos, reference, box, inv_box, dims):
+    """Largest displacement since the last neighbour-list build."""
+    largest = 0.0
+    for i in range(pos.shape[0]):
+        d2 = 0.0
+        for a in range(dims):
+            d = minimum_image(pos[i, a] - reference[i, a], box[a], inv_box[a])
+            d2 += d * d
+        largest = max(largest, d2)
+    return math.sqrt(largest)
+
+
 @numba.njit(
-    types.UniTuple(_I, 3)(
-        _M,
-        _M,
-        _M,
-        _M,
-        _V,
-        _V,
-        _V,
-        _V,
-        _I,
-        _I,
-        _I,
-        _F,
-        _F,
-        _F,
-        _F,
-        _F,
-        _V,
-        _I,
-        _I,
-        _B,
-        _B,
-        SCALAR_KERNEL,
-        _V,
-        CONTACT_KERNEL,
-        SCALAR_KERNEL,
-        _V,
-        _B,
-        _F,
-        _F,
-    ),
+    types.UniTuple(_I, 3)(_M, _M, _M, _M, _V, _V, _V, _V, _I, _I, _I, _F, _F, _F, _F, _F, _V, _I, _I, _B, _B,
+                          SCALAR_KERNEL, _V, CONTACT_KERNEL, SCALAR_KERNEL, _V, _B, _F, _F),
     cache=True,
-)
-def advance(
-    pos,
-    vel,
-    omega,
-    quat,
-    radius,
-    inv_mass,
-    inv_inertia,
-    box,
-    dims,
-    steps,
-    first_step,
-    dt,
-    kT,
-    gamma,
-    gamma_rot,
-    active,
-    bulk,
-    seed,
-    scheme,
-    friction_on,
-    noise_on,
-    pot_force,
-    pot_params,
-    contact,
-    weight,
-    law_params,
-    has_weight,
-    skin,
-    overlap_limit,
-):
+)  # fmt: skip
+def advance(pos, vel, omega, quat, radius, inv_mass, inv_inertia, box, dims, steps, first_step, dt, kT, gamma, gamma_rot,
+            active, bulk, seed, scheme, friction_on, noise_on, pot_force, pot_params, contact, weight, law_params,
+            has_weight, skin, overlap_limit):  # fmt: skip
     """Advance the state in place by ``steps`` steps; returns (status, steps done, neighbour builds).
 
     status: OK, NOT_FINITE (a velocity became inf or NaN) or OVERLAP (r < overlap_limit sigma_ik).
@@ -375,130 +264,46 @@ def advance(
     bit-identical to one long run.
     """
     size = pos.shape[0]
-    cutoff = WCA_RANGE * 2.0 * radius.max() + skin if size else 1.0
-    start, neighbors = build_neighbors(pos, box, dims, cutoff)
+    cutoff = WCA_RANGE * 2.0 * radius.max() + skin
+    inv_box = np.zeros(3)
+    for a in range(dims):
+        inv_box[a] = 1.0 / box[a]
+    start, neighbors, reverse = build_neighbors(pos, box, dims, cutoff)
+    slots = np.zeros((neighbors.size, PAIR_FIELDS))
     reference = pos.copy()
     builds = 1
-    force, fric, tfric = np.zeros((size, 3)), np.zeros((size, 3)), np.zeros((size, 3))
-    kick, tkick = np.zeros((size, 3)), np.zeros((size, 3))
-    fric2, tfric2 = np.zeros((size, 3)), np.zeros((size, 3))
-    kick2, tkick2 = np.zeros((size, 3)), np.zeros((size, 3))
+    terms, again = np.zeros((TERMS, size, 3)), np.zeros((TERMS, size, 3))
     vnew, wnew = np.empty((size, 3)), np.empty((size, 3))
-    pair_pass(
-        pos,
-        vel,
-        omega,
-        radius,
-        inv_mass,
-        inv_inertia,
-        box,
-        dims,
-        start,
-        neighbors,
-        pot_force,
-        pot_params,
-        contact,
-        weight,
-        law_params,
-        has_weight,
-        kT,
-        dt,
-        seed,
-        first_step,
-        False,
-        False,
-        True,
-        force,
-        fric,
-        tfric,
-        kick,
-        tkick,
-    )
-    for n in range(steps):
-        step = first_step + n
-        _half_kick(vel, quat, inv_mass, dims, dt, active, bulk, force)
-        _drift(pos, quat, vel, omega, inv_mass, box, dims, 0.5 * dt)
-        _solvent(vel, omega, inv_mass, inv_inertia, dims, dt, kT, gamma, gamma_rot, seed, step)
-        _drift(pos, quat, vel, omega, inv_mass, box, dims, 0.5 * dt)
-        displacement = 0.0
-        for i in range(size):
-            d2 = 0.0
-            for a in range(dims):
-                d = minimum_image(pos[i, a] - reference[i, a], box[a])
-                d2 += d * d
-            displacement = max(displacement, d2)
-        if math.sqrt(displacement) > 0.5 * skin:
-            start, neighbors = build_neighbors(pos, box, dims, cutoff)
-            reference[:] = pos
-            builds += 1
-        closest = pair_pass(
-            pos,
-            vel,
-            omega,
-            radius,
-            inv_mass,
-            inv_inertia,
-            box,
-            dims,
-            start,
-            neighbors,
-            pot_force,
-            pot_params,
-            contact,
-            weight,
-            law_params,
-            has_weight,
-            kT,
-            dt,
-            seed,
-            step,
-            friction_on,
-            noise_on,
-            True,
-            force,
-            fric,
-            tfric,
-            kick,
-            tkick,
-        )
+    for n in range(-1, steps):
+        step = first_step + max(n, 0)
+        if n >= 0:
+            _half_kick(vel, quat, inv_mass, dims, dt, active, bulk, terms[0])
+            _drift(pos, quat, vel, omega, inv_mass, box, dims, 0.5 * dt)
+            _solvent(vel, omega, inv_mass, inv_inertia, dims, dt, kT, gamma, gamma_rot, stream_key(seed, step, SOLVENT))
+            _drift(pos, quat, vel, omega, inv_mass, box, dims, 0.5 * dt)
+            if _moved(pos, reference, box, inv_box, dims) > 0.5 * skin:
+                start, neighbors, reverse = build_neighbors(pos, box, dims, cutoff)
+                slots = np.zeros((neighbors.size, PAIR_FIELDS))
+                reference[:] = pos
+                builds += 1
+        key = stream_key(seed, step, CONTACT)
+        closest = pair_slots(pos, vel, omega, radius, inv_mass, inv_inertia, box, inv_box, dims, start, neighbors, pot_force,
+                             pot_params, contact, weight, law_params, has_weight, kT, dt, key, friction_on and n >= 0,
+                             noise_on, True, slots)  # fmt: skip
+        gather(radius, start, neighbors, reverse, slots, terms)
+        if n < 0:  # forces at the initial positions for the first half kick
+            continue
         if closest < overlap_limit:
             return OVERLAP, n, builds
-        _contact_kick(vel, omega, inv_mass, inv_inertia, dims, dt, fric, tfric, kick, tkick, vnew, wnew)
+        _contact_kick(vel, omega, inv_mass, inv_inertia, dims, dt, terms, vnew, wnew)
         if friction_on and noise_on and scheme != ITO:
-            pair_pass(
-                pos,
-                vnew,
-                wnew,
-                radius,
-                inv_mass,
-                inv_inertia,
-                box,
-                dims,
-                start,
-                neighbors,
-                pot_force,
-                pot_params,
-                contact,
-                weight,
-                law_params,
-                has_weight,
-                kT,
-                dt,
-                seed,
-                step,
-                True,
-                True,
-                False,
-                force,
-                fric2,
-                tfric2,
-                kick2,
-                tkick2,
-            )
-            _correct(scheme, vnew, wnew, inv_mass, inv_inertia, dims, dt, fric, tfric, kick, tkick, fric2, tfric2, kick2, tkick2)
+            pair_slots(pos, vnew, wnew, radius, inv_mass, inv_inertia, box, inv_box, dims, start, neighbors, pot_force, pot_params,
+                       contact, weight, law_params, has_weight, kT, dt, key, True, True, False, slots)  # fmt: skip
+            gather(radius, start, neighbors, reverse, slots, again)
+            _correct(scheme, vnew, wnew, inv_mass, inv_inertia, dt, terms, again)
         if not (np.isfinite(vnew).all() and np.isfinite(wnew).all()):
             return NOT_FINITE, n, builds
         vel[:] = vnew
         omega[:] = wnew
-        _half_kick(vel, quat, inv_mass, dims, dt, active, bulk, force)
+        _half_kick(vel, quat, inv_mass, dims, dt, active, bulk, terms[0])
     return OK, steps, builds

@@ -14,9 +14,9 @@ import numpy as np
 
 
 @numba.njit(inline="always", cache=True)
-def minimum_image(d, length):
-    """d - L rint(d/L): exact negation symmetry, so pair quantities are antisymmetric bit for bit."""
-    return d - length * np.rint(d / length)
+def minimum_image(d, length, inverse):
+    """d - L rint(d / L) with inverse = 1/L: exact negation symmetry (rint rounds half to even)."""
+    return d - length * np.rint(d * inverse)
 
 
 @numba.njit(cache=True)
@@ -75,7 +75,7 @@ def _visit(i, pos, box, dims, cutoff2, n, cell, order, first, out, fill):
                         continue
                     r2 = 0.0
                     for a in range(dims):
-                        d = minimum_image(pos[k, a] - pos[i, a], box[a])
+                        d = minimum_image(pos[k, a] - pos[i, a], box[a], 1.0 / box[a])
                         r2 += d * d
                     if r2 < cutoff2:
                         if fill:
@@ -86,7 +86,8 @@ def _visit(i, pos, box, dims, cutoff2, n, cell, order, first, out, fill):
 
 @numba.njit(parallel=True, cache=True)
 def build_neighbors(pos, box, dims, cutoff):
-    """Full Verlet list (CSR: start, neighbors) of all pairs closer than ``cutoff``."""
+    """Full Verlet list of all pairs closer than ``cutoff``: CSR (start, neighbors) and ``reverse``,
+    the slot of (k, i) for the slot of (i, k)."""
     size = pos.shape[0]
     n, cell, order, first = _cells(pos, box, dims, cutoff)
     counts = np.empty(size, dtype=np.int64)
@@ -101,4 +102,9 @@ def build_neighbors(pos, box, dims, cutoff):
         segment = neighbors[start[i] : start[i + 1]]
         _visit(i, pos, box, dims, cutoff * cutoff, n, cell, order, first, segment, True)
         segment.sort()
-    return start, neighbors
+    reverse = np.empty_like(neighbors)
+    for i in numba.prange(size):
+        for slot in range(start[i], start[i + 1]):
+            k = neighbors[slot]
+            reverse[slot] = start[k] + np.searchsorted(neighbors[start[k] : start[k + 1]], i)
+    return start, neighbors, reverse

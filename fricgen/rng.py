@@ -32,25 +32,29 @@ def _mix(z):
 
 
 @numba.njit(inline="always", cache=True)
-def key(seed, step, stream, i, k):
-    """A 64-bit key from five non-negative integers."""
+def stream_key(seed, step, stream):
+    """The key of one noise stream at one step (computed once per step)."""
     z = _mix(np.uint64(seed))
     z = _mix(z ^ np.uint64(step))
-    z = _mix(z ^ np.uint64(stream))
-    z = _mix(z ^ np.uint64(i))
-    return _mix(z ^ np.uint64(k))
+    return _mix(z ^ np.uint64(stream))
 
 
 @numba.njit(inline="always", cache=True)
-def normal_pair(seed, step, stream, i, k, counter):
-    """Two independent standard normals for the key and a small counter (0, 1, 2, ...)."""
-    z = key(seed, step, stream, i, k) ^ np.uint64(counter)
+def normal_pair_at(base, i, k, counter):
+    """Two independent standard normals for (stream key, i, k) and a small counter (0, 1, 2, ...)."""
+    z = _mix(_mix(base ^ np.uint64(i)) ^ np.uint64(k)) ^ np.uint64(counter)
     a = _mix(z)
     b = _mix(a)
     u1 = (float(a >> _S11) + 0.5) * _TWO_53  # in (0, 1): log is finite
     u2 = float(b >> _S11) * _TWO_53
     radius = math.sqrt(-2.0 * math.log(u1))
     return radius * math.cos(2.0 * math.pi * u2), radius * math.sin(2.0 * math.pi * u2)
+
+
+@numba.njit(inline="always", cache=True)
+def normal_pair(seed, step, stream, i, k, counter):
+    """Two independent standard normals keyed on (seed, step, stream, i, k) and a counter."""
+    return normal_pair_at(stream_key(seed, step, stream), i, k, counter)
 
 
 @numba.njit(cache=True)
