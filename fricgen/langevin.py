@@ -80,6 +80,8 @@ def pair_slots(pos, vel, omega, radius, inv_mass, inv_inertia, box, inv_box, dim
                 continue
             out = slots[slot]
             out[:] = 0.0
+            if inv_mass[i] == 0.0 and inv_mass[k] == 0.0:
+                continue  # two immobile (wall) particles: no effect, and mu_ik = 0
             dx = minimum_image(pos[k, 0] - pos[i, 0], box[0], inv_box[0])
             dy = minimum_image(pos[k, 1] - pos[i, 1], box[1], inv_box[1])
             dz = minimum_image(pos[k, 2] - pos[i, 2], box[2], inv_box[2]) if dims == 3 else 0.0

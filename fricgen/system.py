@@ -106,3 +106,46 @@ def lattice_state(particles: Particles, dim: int, fraction: float, kT: float = 1
     velocity[~particles.mobile] = 0.0
     omega[~particles.mobile] = 0.0
     return State(position, velocity, omega, orientation, box, dim)
+
+
+def add_slab_walls(
+    particles: Particles, state: State, half_width: float, roughness: float = 0.0, seed: int = 1, spacing: float = 1.0
+) -> tuple[Particles, State]:
+    """Append two walls of immobile spheres (F-42): a square lattice of lattice constant ``spacing``
+    in the xz-plane (a row along x in 2-D) at y = y_c +- half_width + roughness * zeta_j, y_c the box
+    centre, with the same Gaussian zeta_j on both walls (as in the paper). Wall spheres copy the
+    radius and mass of particle 0. Returns the extended particles and state.
+    """
+    if roughness < 0 or spacing <= 0 or not 0 < 2 * half_width < state.box[1]:
+        raise ValueError("need roughness >= 0, spacing > 0 and 0 < 2 half_width < L_y")
+    counts = [max(1, int(round(state.box[0] / spacing))), max(1, int(round(state.box[2] / spacing))) if state.dim == 3 else 1]
+    grid = np.stack(np.meshgrid(np.arange(counts[0]), np.arange(counts[1]), indexing="ij"), axis=-1).reshape(-1, 2)
+    zeta = normals(seed, 0, INITIAL + 1, grid.shape[0])
+    walls = []
+    for side in (-1.0, 1.0):
+        site = np.zeros((grid.shape[0], 3))
+        site[:, 0] = (grid[:, 0] + 0.5) * state.box[0] / counts[0]
+        site[:, 1] = 0.5 * state.box[1] + side * half_width + roughness * zeta
+        if state.dim == 3:
+            site[:, 2] = (grid[:, 1] + 0.5) * state.box[2] / counts[1]
+        walls.append(site)
+    wall = np.concatenate(walls)
+    m = wall.shape[0]
+    r0, m0 = particles.radius[0], particles.mass[0]
+    extended = Particles(
+        np.concatenate([particles.radius, np.full(m, r0)]),
+        np.concatenate([particles.mass, np.full(m, m0)]),
+        np.concatenate([particles.inertia, np.full(m, 0.4 * m0 * r0**2)]),
+        np.concatenate([particles.mobile, np.zeros(m, bool)]),
+    )
+    still = np.zeros((m, 3))
+    quat = np.tile([1.0, 0.0, 0.0, 0.0], (m, 1))
+    return extended, State(
+        np.concatenate([state.position, wall]),
+        np.concatenate([state.velocity, still]),
+        np.concatenate([state.omega, still]),
+        np.concatenate([state.orientation, quat]),
+        state.box.copy(),
+        state.dim,
+        state.step,
+    )

@@ -154,3 +154,26 @@ def test_bad_inputs_are_refused():
 
     with pytest.raises(KernelError, match="no kernels for the 'hk'"):
         passive(law="coulomb", calculus="hk")
+
+
+def test_slab_walls_follow_f42_and_drive_a_flow():
+    from fricgen.system import add_slab_walls
+
+    particles = Particles.spheres(96)
+    state = lattice_state(particles, 2, 0.3, seed=6)
+    inside = np.abs(state.position[:, 1] - state.box[1] / 2) < state.box[1] / 2 - 2.0
+    fluid = Particles(particles.radius[inside], particles.mass[inside], particles.inertia[inside], particles.mobile[inside])
+    from fricgen.system import State
+
+    state = State(*(getattr(state, a)[inside] for a in ("position", "velocity", "omega", "orientation")), state.box, 2)
+    walls, state = add_slab_walls(fluid, state, half_width=state.box[1] / 2 - 1.0, roughness=0.1, seed=3)
+    fixed = ~walls.mobile
+    y = state.position[fixed, 1]
+    lower, upper = y[: fixed.sum() // 2], y[fixed.sum() // 2 :]
+    np.testing.assert_allclose(upper - lower, 2 * (state.box[1] / 2 - 1.0))  # same zeta on both walls
+    assert 0.05 < np.std(lower) < 0.2  # roughness delta_w = 0.1
+    sim = Simulation(LangevinConfig(law="coulomb_newton", bulk_force=(0.3, 0.0, 0.0), seed=6), walls, state)
+    start = state.position[fixed].copy()
+    sim.advance(2000)
+    assert np.array_equal(sim.state.position[fixed], start)
+    assert sim.state.velocity[~fixed, 0].mean() > 0
