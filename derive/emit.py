@@ -184,7 +184,8 @@ def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, sou
         f"CLOSED_FORM = {{{', '.join(f'{c!r}: {m.closed_form}' for c, m in models.items())}}}\n"
         f"HAS_WEIGHT = {law.weight is not None}\n"
     )
-    if any(not m.closed_form for m in models.values()):
+    needs_quadrature = not all(m.closed_form for m in models.values())
+    if needs_quadrature:
         parts.append("\n" + _quadrature_constants())
     functions = []
     if law.weight is not None:
@@ -193,7 +194,7 @@ def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, sou
     ratio = sp.piecewise_fold((law.friction / u).rewrite(sp.Piecewise))
     guard = _zero_speed_guard(ratio)
     functions.append(_kernel("friction_over_u", "u, w, r, params", ratio, "f/u, the factor of the tangential velocity.", params, guard))
-    if any(not m.closed_form for m in models.values()):
+    if needs_quadrature:
         functions.append(_TAIL_KERNEL.format(decorator=DECORATOR, order=QUADRATURE_ORDER).lstrip("\n"))
     args = "u, w, r, mu, kT, params"
     for c, model in models.items():

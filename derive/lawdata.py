@@ -16,6 +16,9 @@ GENERATOR_VERSION = 1
 
 CATALOGUE = Path(__file__).with_name("catalogue")
 
+#: The stochastic calculi a law file may list (theta = 0, 1/2, 1).
+CALCULI = ("ito", "stratonovich", "hk")
+
 
 class LawFileError(ValueError):
     """A law file that cannot be read."""

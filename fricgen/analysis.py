@@ -17,14 +17,20 @@ import numpy as np
 from .system import Particles, State
 
 
+def scaled_components(state: State, particles: Particles) -> tuple[np.ndarray, np.ndarray]:
+    """sqrt(m) v and sqrt(I) omega of the mobile particles, one column per degree of freedom
+    (2-D: v_x, v_y and omega_z; 3-D: three each); each has variance kT at equilibrium."""
+    mobile = particles.mobile
+    spin_axes = slice(2, 3) if state.dim == 2 else slice(0, 3)
+    velocities = state.velocity[mobile, : state.dim] * np.sqrt(particles.mass[mobile, None])
+    spins = state.omega[mobile, spin_axes] * np.sqrt(particles.inertia[mobile, None])
+    return velocities, spins
+
+
 def temperatures(state: State, particles: Particles) -> tuple[float, float]:
     """Instantaneous kinetic temperatures of translation and rotation of the mobile particles."""
-    mobile = particles.mobile
-    d = state.dim
-    trans = np.sum(particles.mass[mobile, None] * state.velocity[mobile, :d] ** 2) / (d * mobile.sum())
-    axes = slice(2, 3) if d == 2 else slice(0, 3)
-    rot = np.sum(particles.inertia[mobile, None] * state.omega[mobile, axes] ** 2) / ((1 if d == 2 else 3) * mobile.sum())
-    return float(trans), float(rot)
+    velocities, spins = scaled_components(state, particles)
+    return float(np.mean(velocities**2)), float(np.mean(spins**2))
 
 
 @dataclass(frozen=True)
@@ -83,15 +89,12 @@ class Sampler:
         self.keep = keep_samples
 
     def __call__(self, simulation) -> None:
-        state, mobile = simulation.state, self.particles.mobile
-        t, r = temperatures(state, self.particles)
-        self.trans.append(t)
-        self.rot.append(r)
+        velocities, spins = scaled_components(simulation.state, self.particles)
+        self.trans.append(float(np.mean(velocities**2)))
+        self.rot.append(float(np.mean(spins**2)))
         if sum(v.size for v in self.velocities) < self.keep:
-            d = state.dim
-            self.velocities.append((state.velocity[mobile, :d] * np.sqrt(self.particles.mass[mobile, None])).ravel())
-            axes = slice(2, 3) if d == 2 else slice(0, 3)
-            self.spins.append((state.omega[mobile, axes] * np.sqrt(self.particles.inertia[mobile, None])).ravel())
+            self.velocities.append(velocities.ravel())
+            self.spins.append(spins.ravel())
 
     def scaled_velocities(self) -> np.ndarray:
         """sqrt(m) v components (variance kT at equilibrium)."""

@@ -34,7 +34,7 @@ CONTACT_TOLERANCE = 1e-12  # relative to sigma: gaps below it are contacts
 OK, PASSED, ALL_IN_CONTACT = 0, 1, 2
 
 _F, _I, _B = types.float64, types.int64, types.boolean
-_V, _M, _L = types.Array(_F, 1, "C"), types.Array(_F, 2, "C"), types.Array(_I, 1, "C")
+_V, _M = types.Array(_F, 1, "C"), types.Array(_F, 2, "C")
 
 
 @numba.njit(inline="always", cache=True)
@@ -50,7 +50,6 @@ def _cluster_velocities(forces, members, count, mu, v, stack, prefix):
     prefix[0] = 0.0
     for k in range(count):
         prefix[k + 1] = prefix[k] + forces[members[k]]
-    top = 0
     stack[0, 0], stack[0, 1] = 0, count
     top = 1
     while top > 0:

@@ -6,7 +6,7 @@ import argparse
 import json
 import sys
 
-CALCULI = ("ito", "stratonovich", "hk")
+from derive.lawdata import CALCULI
 
 
 def _verify(args: argparse.Namespace) -> int:

@@ -18,8 +18,6 @@ import numpy as np
 
 from derive.lawdata import CATALOGUE, LawFileError, read_law_data, source_hash
 
-CALCULI = ("ito", "stratonovich", "hk")
-
 
 class KernelError(LookupError):
     """Kernels missing, stale, or asked for a calculus the law does not have."""

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -123,14 +123,12 @@ class RodSimulation:
 
     def equilibrate(self, duration: float, dt: float | None = None) -> None:
         """Run ``duration`` time units without sampling, at time step ``dt`` (default: the config's)."""
-        run = RodSimulation.__new__(RodSimulation)
-        run.__dict__.update(self.__dict__)
-        run.config = replace(self.config, dt=dt or self.config.dt)
-        run.advance(int(round(duration / run.config.dt)))
-        self.positions, self.step = run.positions, run.step
+        dt = dt or self.config.dt
+        self.advance(int(round(duration / dt)), dt=dt)
 
-    def advance(self, steps: int, counts: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None) -> None:
-        """Advance all replicas; ``counts`` = (rods, gaps in [0, w], gaps in (w, 2w]) per replica and bin."""
+    def advance(self, steps: int, counts: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None, dt: float | None = None) -> None:
+        """Advance all replicas by ``steps`` steps of ``dt`` (default: the config's); ``counts`` =
+        (rods, gaps in [0, w], gaps in (w, 2w]) per replica and bin."""
         c = self.config
         counts = counts or tuple(np.zeros((c.replicas, c.bins)) for _ in range(3))
         status = bcd.advance_rods(
@@ -139,7 +137,7 @@ class RodSimulation:
             c.sigma,
             c.mu,
             c.diffusion,
-            c.dt,
+            dt or c.dt,
             steps,
             self.step,
             c.seed,

@@ -14,8 +14,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from derive.lawdata import CALCULI
+
 from . import langevin
-from .kernels import CALCULI, load_law_kernels, load_potential
+from .kernels import load_law_kernels, load_potential
 from .system import Particles, State
 
 SCHEMES = {"ito": langevin.ITO, "stratonovich": langevin.STRATONOVICH, "hk": langevin.HK}

@@ -131,11 +131,9 @@ def add_slab_walls(
         walls.append(site)
     wall = np.concatenate(walls)
     m = wall.shape[0]
-    r0, m0 = particles.radius[0], particles.mass[0]
+    spheres = Particles.spheres(m, particles.radius[0], particles.mass[0])
     extended = Particles(
-        np.concatenate([particles.radius, np.full(m, r0)]),
-        np.concatenate([particles.mass, np.full(m, m0)]),
-        np.concatenate([particles.inertia, np.full(m, 0.4 * m0 * r0**2)]),
+        *(np.concatenate([getattr(particles, a), getattr(spheres, a)]) for a in ("radius", "mass", "inertia")),
         np.concatenate([particles.mobile, np.zeros(m, bool)]),
     )
     still = np.zeros((m, 3))
