@@ -5,7 +5,7 @@ import pytest
 
 from fricgen import bcd
 from fricgen.rods import RodConfig, RodSimulation, best_exponent, sticky_force_max
-from fricgen.rods_theory import hard_rod_profile
+from fricgen.rods_theory import rod_profile
 
 
 def velocities(forces):
@@ -48,7 +48,7 @@ def test_dilute_density_profile_matches_the_exact_theory():
     simulation = RodSimulation(config)
     simulation.equilibrate(20.0, dt=1e-4)
     measured = simulation.run(200_000)
-    theory = hard_rod_profile(lambda x: 3 * np.cos(2 * np.pi * x), 0.5, 0.4)
+    theory = rod_profile(lambda x: 3 * np.cos(2 * np.pi * x), 0.5, 0.4)
     edges = np.linspace(0, 1, config.bins + 1)
     expected = np.array([theory.at(np.linspace(a, b, 41)).mean() for a, b in zip(edges, edges[1:])])
     chi2 = np.mean(((measured.rho - expected) / measured.rho_err) ** 2)
