@@ -14,8 +14,9 @@ of length L. Per step dt:
 Continuous pair forces act between neighbours (f_int of range sigma + eps < 2 sigma, e.g. the
 sticky force B-32). Positions are kept unwrapped and ordered (x_0 < ... < x_{N-1} < x_0 + L): rods
 never pass each other. Sampling after each step adds the rods of every period to histograms over
-one wavelength (B-24, B-25) and counts pairs by gap in two windows [0, w] and (w, 2w] at the left
-rod's bin (B-26; see rods.py for the estimate of the contact density).
+one wavelength (B-24, B-25) and histograms the gaps r - sigma of neighbours at the left rod's bin:
+exact contacts (left by merging) apart, positive gaps in bins of width w (B-26; see rods.py for the
+estimate of the contact density).
 """
 
 from __future__ import annotations
@@ -34,7 +35,7 @@ CONTACT_TOLERANCE = 1e-12  # relative to sigma: gaps below it are contacts
 OK, PASSED, ALL_IN_CONTACT = 0, 1, 2
 
 _F, _I, _B = types.float64, types.int64, types.boolean
-_V, _M = types.Array(_F, 1, "C"), types.Array(_F, 2, "C")
+_V, _M, _T = types.Array(_F, 1, "C"), types.Array(_F, 2, "C"), types.Array(_F, 3, "C")
 
 
 @numba.njit(inline="always", cache=True)
@@ -123,20 +124,20 @@ def _step(x, forces, v, length, sigma, mu, dt, members, stack, prefix):
 
 
 @numba.njit(
-    _I(_M, _F, _F, _F, _F, _F, _I, _I, _I, SCALAR_KERNEL, _V, _F, SCALAR_KERNEL, _V, _F, _B, _F, _F, _M, _M, _M),
+    _I(_M, _F, _F, _F, _F, _F, _I, _I, _I, SCALAR_KERNEL, _V, _F, SCALAR_KERNEL, _V, _F, _B, _F, _F, _M, _T),
     parallel=True,
     cache=True,
 )  # fmt: skip
 def advance_rods(positions, length, sigma, mu, diffusion, dt, steps, first_step, seed, external, external_params, drive,
-                 pair_force, pair_params, pair_range, pair_on, wavelength, contact_width, rho_counts, near, next_):  # fmt: skip
+                 pair_force, pair_params, pair_range, pair_on, wavelength, gap_width, rho_counts, gap_counts):  # fmt: skip
     """Advance every replica (row of positions) by ``steps`` BCD steps, sampling after each step.
 
-    rho_counts[r, b] accumulates rods per bin of one wavelength; near[r, b] and next_[r, b] the left
-    rods of pairs with gap r - sigma in [0, w] and (w, 2w], w = contact_width. Returns OK or a
+    rho_counts[r, b] accumulates rods per bin of one wavelength; gap_counts[r, b, k] the left rods
+    of pairs in exact contact (k = 0) and with gap r - sigma in [(k - 1) w, k w) (k >= 1), w = gap_width. Returns OK or a
     failure status (PASSED: rods overlapped; ALL_IN_CONTACT: no gap left on the ring).
     """
     replicas, n = positions.shape
-    bins = rho_counts.shape[1]
+    bins, gap_bins = gap_counts.shape[1], gap_counts.shape[2]
     status = np.zeros(replicas, dtype=np.int64)
     noise = math.sqrt(2.0 * diffusion / dt) / mu
     for r in numba.prange(replicas):
@@ -163,8 +164,7 @@ def advance_rods(positions, length, sigma, mu, diffusion, dt, steps, first_step,
                 b = int((x[i] / wavelength - math.floor(x[i] / wavelength)) * bins) % bins
                 rho_counts[r, b] += 1.0
                 gap = _gap(x, i, length) - sigma
-                if gap <= contact_width:
-                    near[r, b] += 1.0
-                elif gap <= 2.0 * contact_width:
-                    next_[r, b] += 1.0
+                k = 0 if gap <= CONTACT_TOLERANCE * sigma else 1 + int(gap / gap_width)
+                if k < gap_bins:
+                    gap_counts[r, b, k] += 1.0
     return status.max()

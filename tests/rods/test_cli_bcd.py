@@ -1,0 +1,35 @@
+"""fricgen bcd: profile CSV, plot and JSON summary; bad input gets one clear message."""
+
+import json
+
+import numpy as np
+
+from fricgen.cli import main
+
+
+def test_bcd_writes_profile_plot_and_summary(tmp_path, capsys):
+    out = tmp_path / "rods"
+    args = ["bcd", "--n", "20", "--time", "0.5", "--equilibrate", "2", "--dt", "1e-4", "--bins", "20", "--out", str(out), "--json"]
+    assert main(args) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert {"max_abs_dev", "l1_dev_over_rho", "chi2_per_dof", "steps", "seconds", "contact_ratio"} <= summary.keys()
+    assert summary["steps"] == 5000 and summary["l1_dev_over_rho"] < 0.1
+    table = np.genfromtxt(out / "profile.csv", delimiter=",", names=True)
+    assert table.dtype.names[:4] == ("x", "rho", "rho_err", "rho2_contact") and table.size == 20
+    np.testing.assert_allclose(table["x"], (np.arange(20) + 0.5) / 20)
+    assert (out / "profile.png").stat().st_size > 10_000
+
+
+def test_bcd_sticky_reports_the_representation_error(tmp_path, capsys):
+    args = ["bcd", "--n", "20", "--gamma", "1", "--time", "0.1", "--equilibrate", "0.5", "--dt", "2e-5", "--out", str(tmp_path), "--json"]
+    assert main(args) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert 0 < summary["representation_error_max"] < 0.05 and "contact_ratio" not in summary
+
+
+def test_bcd_refuses_bad_input(tmp_path, capsys):
+    assert main(["bcd", "--n", "300", "--out", str(tmp_path / "x")]) == 2
+    assert "close packing" in capsys.readouterr().err
+    assert main(["bcd", "--time", "-1", "--out", str(tmp_path / "y")]) == 2
+    assert "--time" in capsys.readouterr().err
+    assert not (tmp_path / "x").exists() and not (tmp_path / "y").exists()
