@@ -244,7 +244,7 @@ def parser() -> argparse.ArgumentParser:
     bcd.add_argument("--eps", type=float, default=0.05, help="range of the delta_eps representation (B-31)")
     bcd.add_argument("--dt", type=float, default=DEFAULT_BCD_DT, help=f"time step (default {DEFAULT_BCD_DT:g}; bias O(sqrt(dt)))")
     bcd.add_argument("--time", type=float, default=5.0, help="sampled time per replica (default 5)")
-    bcd.add_argument("--equilibrate", type=float, default=20.0, help="equilibration time before sampling (default 20)")
+    bcd.add_argument("--equilibrate", type=float, default=200.0, help="equilibration time before sampling, at dt <= 1e-4 (default 200)")
     bcd.add_argument("--seed", type=int, default=1)
     bcd.add_argument("--replicas", type=int, default=4, help="independent rings run in parallel (default 4)")
     bcd.add_argument("--bins", type=int, default=50, help="bins over one wavelength (default 50)")
