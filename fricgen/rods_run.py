@@ -16,10 +16,10 @@ REFINEMENT = 4  # --extrapolate: a second run at dt / 4
 
 
 def _sample(config: RodConfig, duration: float, equilibration: float) -> RodProfiles:
-    """Equilibrate at a coarse step (1e-4, or finer where the sticky force needs it, B-33), then sample."""
+    """Equilibrate at a coarse step (1e-4, or where the sticky force needs it mu max|f| dt = eps / 10, B-33), then sample."""
     coarse = 1e-4
     if config.gamma > 0:
-        coarse = min(coarse, 0.05 * config.eps / (config.mu * sticky_force_max(config.gamma, config.p, config.eps, config.kT)))
+        coarse = min(coarse, 0.1 * config.eps / (config.mu * sticky_force_max(config.gamma, config.p, config.eps, config.kT)))
     simulation = RodSimulation(config)
     simulation.equilibrate(equilibration, dt=max(config.dt, coarse))
     return simulation.run(max(20, round(duration / config.dt)))
