@@ -82,6 +82,8 @@ class Simulation:
         self.kernels = load_law_kernels(config.law)
         self.kernels.contact(config.calculus)  # raises for a calculus the law does not have
         params = dict(config.parameters)
+        if params.get("sigma", 1.0) != 1.0:
+            raise ValueError("the law parameter sigma is set by the particle radii (sigma_ik = R_i + R_k): set the radii instead")
         if "sigma" in self.kernels.parameter_names:
             params["sigma"] = 1.0  # the engine scales distances by sigma_ik = R_i + R_k
         if "epsilon" in self.kernels.parameter_names:

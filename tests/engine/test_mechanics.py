@@ -154,6 +154,8 @@ def test_bad_inputs_are_refused():
 
     with pytest.raises(KernelError, match="no kernels for the 'hk'"):
         passive(law="coulomb", calculus="hk")
+    with pytest.raises(ValueError, match="set by the particle radii"):
+        passive(parameters={"sigma": 2.0})
 
 
 def test_slab_walls_follow_f42_and_drive_a_flow():
