@@ -33,6 +33,18 @@ def temperatures(state: State, particles: Particles) -> tuple[float, float]:
     return float(np.mean(velocities**2)), float(np.mean(spins**2))
 
 
+def velocity_profile(state: State, particles: Particles, bins: int) -> tuple[np.ndarray, np.ndarray]:
+    """Mean v_x and omega_z of the mobile particles in ``bins`` equal slabs along y (slab j spans
+    [j, j + 1) L_y / bins; NaN where a slab is empty): the flow and spin profiles of a slit."""
+    mobile = particles.mobile
+    slab = np.minimum((state.position[mobile, 1] / state.box[1] * bins).astype(int), bins - 1)
+    counts = np.bincount(slab, minlength=bins).astype(float)
+    counts[counts == 0] = np.nan
+    vx = np.bincount(slab, state.velocity[mobile, 0], bins) / counts
+    wz = np.bincount(slab, state.omega[mobile, 2], bins) / counts
+    return vx, wz
+
+
 @dataclass(frozen=True)
 class Estimate:
     """A mean with its standard error from block averages."""

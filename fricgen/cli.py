@@ -166,6 +166,32 @@ def _thermostat_check(args: argparse.Namespace) -> int:
     return 0 if result.passed else 1
 
 
+def _demo(args: argparse.Namespace) -> int:
+    """fricgen demo [--out DIR] [--json]: the passive check with and without contact noise; plots and JSON."""
+    from pathlib import Path
+
+    from fricgen.demo import describe, run_demo
+
+    try:
+        summary = run_demo(Path(args.out))
+    except KeyboardInterrupt:
+        print("fricgen demo: interrupted; nothing written", file=sys.stderr)
+        return 130
+    print(json.dumps(summary, indent=2) if args.json else describe(summary, Path(args.out)))
+    return 0
+
+
+def _run(args: argparse.Namespace) -> int:
+    """fricgen run CONFIG [--set KEY=VALUE ...] [--steps N] [--out DIR] [--resume CHECKPOINT] [--json]."""
+    from fricgen.runner import command
+
+    try:
+        return command(args.config, args.set, args.steps, args.out, args.resume, args.json)
+    except KeyboardInterrupt:
+        print("fricgen run: interrupted before the run started; nothing written", file=sys.stderr)
+        return 130
+
+
 def _bcd(args: argparse.Namespace) -> int:
     """fricgen bcd ...: hard or sticky rods by BCD against the exact theory; CSV, PNG, JSON summary."""
     from pathlib import Path
@@ -233,6 +259,20 @@ def parser() -> argparse.ArgumentParser:
     check.add_argument("--param", type=_assignment, action="append", default=[], metavar="NAME=VALUE")
     check.add_argument("--json", action="store_true")
     check.set_defaults(run=_thermostat_check)
+
+    demo = commands.add_parser("demo", help="the main job: 2-D passive Coulomb-Newton system with and without contact noise")
+    demo.add_argument("--out", default="fricgen-demo", metavar="DIR", help="output folder (default fricgen-demo)")
+    demo.add_argument("--json", action="store_true", help="print the summary as JSON")
+    demo.set_defaults(run=_demo)
+
+    run = commands.add_parser("run", help="a simulation from a TOML configuration (or a bundled example: passive, poiseuille, active)")
+    run.add_argument("config", metavar="CONFIG", help="a TOML file or the name of a bundled example")
+    run.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE", help="override a key (TOML value)")
+    run.add_argument("--steps", type=int, help="override run.steps")
+    run.add_argument("--out", metavar="DIR", help="output folder (default fricgen-<config name>)")
+    run.add_argument("--resume", metavar="CHECKPOINT", help="continue from DIR/checkpoint.npz of a stopped run")
+    run.add_argument("--json", action="store_true", help="print the summary as JSON")
+    run.set_defaults(run=_run)
 
     bcd = commands.add_parser("bcd", help="hard or sticky rods in a cosine field by BCD, against the exact theory")
     bcd.add_argument("--n", type=int, default=50, help="rods per ring (default 50)")

@@ -78,22 +78,65 @@ def packing_box(particles: Particles, dim: int, fraction: float) -> np.ndarray:
     return np.array([side, side, side])
 
 
-def lattice_state(particles: Particles, dim: int, fraction: float, kT: float = 1.0, seed: int = 1) -> State:
-    """Particles on a square (cubic) lattice in a periodic box, Maxwell–Boltzmann velocities and
-    spins at kT, random orientations; raises ValueError if the lattice would overlap."""
-    if dim not in (2, 3):
-        raise ValueError(f"dim must be 2 or 3, got {dim}")
-    n = particles.radius.size
-    box = packing_box(particles, dim, fraction)
-    per_side = math.ceil(n ** (1.0 / dim) - 1e-9)
-    spacing = box[0] / per_side
-    if spacing < 2 * particles.radius.max():
-        limit = {2: "pi/4 = 0.785", 3: "pi/6 = 0.524"}[dim]
-        raise ValueError(f"packing fraction {fraction} too high for a lattice start (square/cubic lattice limit {limit})")
+CLOSE_PACKING = {2: math.pi / (2 * math.sqrt(3)), 3: math.pi / (3 * math.sqrt(2))}
+"""Densest packing fraction of equal discs (hexagonal, 0.9069) and spheres (fcc, 0.7405)."""
+
+LATTICE_LIMIT = {2: math.pi / 4, 3: math.pi / 6}
+"""Densest square (2-D) or simple cubic (3-D) lattice start, 0.785 and 0.524."""
+
+RANDOM_LIMIT = {2: 0.4, 3: 0.25}
+"""Random starts above this fraction are refused (random sequential addition jams near 0.547 and 0.38)."""
+
+
+def lattice_positions(n: int, lengths: np.ndarray, dim: int, min_spacing: float) -> np.ndarray:
+    """n sites of a rectangular lattice filling the region [0, L_a) (a < dim), about equally spaced
+    along every axis; raises ValueError if two sites would be closer than ``min_spacing``."""
+    lengths = np.asarray(lengths, dtype=float)[:dim]
+    site = (np.prod(lengths) / n) ** (1.0 / dim)
+    counts = [math.ceil(length / site - 1e-9) for length in lengths]
+    spacing = lengths / counts
+    if spacing.min() < min_spacing:
+        limit = f"{LATTICE_LIMIT[dim]:.3f} ({'square' if dim == 2 else 'cubic'} lattice limit)"
+        raise ValueError(f"{n} particles do not fit on a lattice here: packing fraction too high for a lattice start, above {limit}")
     index = np.arange(n)
     position = np.zeros((n, 3))
+    stride = 1
     for a in range(dim):
-        position[:, a] = (index // per_side**a % per_side + 0.5) * spacing
+        position[:, a] = (index // stride % counts[a] + 0.5) * spacing[a]
+        stride *= counts[a]
+    return position
+
+
+def random_positions(radius: np.ndarray, lengths: np.ndarray, dim: int, seed: int = 1, attempts: int = 1000) -> np.ndarray:
+    """Random sequential addition of non-overlapping spheres (|r_i - r_k| >= R_i + R_k) into the
+    periodic region [0, L_a) (a < dim); raises ValueError when a sphere finds no place in ``attempts`` tries."""
+    lengths = np.asarray(lengths, dtype=float)[:dim]
+    reach = 2 * radius.max()
+    cells = np.maximum(1, (lengths // reach).astype(int))
+    grid: dict[tuple[int, ...], list[int]] = {}
+    position = np.zeros((radius.size, 3))
+    generator = np.random.default_rng(seed)
+    offsets = np.stack(np.meshgrid(*([(-1, 0, 1)] * dim), indexing="ij"), axis=-1).reshape(-1, dim)
+    for i, ri in enumerate(radius):
+        for _ in range(attempts):
+            trial = generator.random(dim) * lengths
+            cell = (trial // (lengths / cells)).astype(int) % cells
+            near = [k for o in offsets for k in grid.get(tuple((cell + o) % cells), ())]
+            delta = position[near, :dim] - trial
+            delta -= lengths * np.round(delta / lengths)
+            if not near or np.all(np.sum(delta**2, axis=1) >= (ri + radius[near]) ** 2):
+                break
+        else:
+            raise ValueError(f"random start: no place for particle {i} of {radius.size} after {attempts} tries; lower the packing fraction")
+        position[i, :dim] = trial
+        grid.setdefault(tuple(cell), []).append(i)
+    return position
+
+
+def thermal_state(particles: Particles, position: np.ndarray, box: np.ndarray, dim: int, kT: float = 1.0, seed: int = 1) -> State:
+    """A state at the given positions with Maxwell–Boltzmann velocities and spins at kT and random
+    orientations (about z in 2-D); immobile particles are at rest."""
+    n = particles.radius.size
     z = normals(seed, 0, INITIAL, 12 * n).reshape(n, 12)
     velocity = z[:, :3] * np.sqrt(kT / particles.mass)[:, None]
     omega = z[:, 3:6] * np.sqrt(kT / particles.inertia)[:, None]
@@ -105,7 +148,17 @@ def lattice_state(particles: Particles, dim: int, fraction: float, kT: float = 1
         orientation = np.stack([np.cos(angle / 2), 0 * angle, 0 * angle, np.sin(angle / 2)], axis=1)
     velocity[~particles.mobile] = 0.0
     omega[~particles.mobile] = 0.0
-    return State(position, velocity, omega, orientation, box, dim)
+    return State(position, velocity, omega, orientation, np.asarray(box, dtype=float), dim)
+
+
+def lattice_state(particles: Particles, dim: int, fraction: float, kT: float = 1.0, seed: int = 1) -> State:
+    """Particles on a square (cubic) lattice in a periodic box, Maxwell–Boltzmann velocities and
+    spins at kT, random orientations; raises ValueError if the lattice would overlap."""
+    if dim not in (2, 3):
+        raise ValueError(f"dim must be 2 or 3, got {dim}")
+    box = packing_box(particles, dim, fraction)
+    position = lattice_positions(particles.radius.size, box, dim, 2 * particles.radius.max())
+    return thermal_state(particles, position, box, dim, kT, seed)
 
 
 def add_slab_walls(

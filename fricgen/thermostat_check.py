@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass
 
 from .analysis import Sampler, block_estimate, kl_divergence
@@ -39,7 +40,7 @@ class CheckResult:
         return asdict(self)
 
 
-def thermostat_check(
+def passive_run(
     law: str,
     dim: int = 2,
     calculus: str = "ito",
@@ -57,8 +58,11 @@ def thermostat_check(
     z_limit: float = 4.0,
     kl_limit: float = 2e-3,
     every: int | None = None,
-) -> CheckResult:
-    """Run the passive check and return temperatures, errors, KL divergences and the verdict."""
+    observers: Sequence[Callable[[Simulation], None]] = (),
+) -> tuple[CheckResult, Sampler]:
+    """Run the passive check; return its result and the sampler (velocity and spin samples).
+
+    ``observers`` are called after every chunk of the equilibration and of the sampling."""
     start = time.perf_counter()
     n = n or (256 if dim == 2 else 216)
     phi = phi or (0.6 if dim == 2 else 0.3)
@@ -80,9 +84,9 @@ def thermostat_check(
     simulation = Simulation(config, particles, state)
     steps = int(round(total_time / dt))
     every = every or max(1, int(round(0.05 / dt)))
-    simulation.run(steps // 10, every=steps // 10 or 1)  # equilibration from the lattice start
+    simulation.run(steps // 10, every=steps // 10 or 1, observers=observers)  # equilibration from the lattice start
     sampler = Sampler(particles)
-    simulation.run(steps - steps // 10, every=every, observers=[sampler])
+    simulation.run(steps - steps // 10, every=every, observers=[sampler, *observers])
     trans, rot = block_estimate(sampler.trans), block_estimate(sampler.rot)
     kl_trans, kl_rot = kl_divergence(sampler.scaled_velocities()), kl_divergence(sampler.scaled_spins())
     passed = (
@@ -91,7 +95,7 @@ def thermostat_check(
         and kl_trans < kl_limit
         and kl_rot < kl_limit
     )
-    return CheckResult(
+    result = CheckResult(
         law,
         calculus,
         simulation.scheme,
@@ -107,3 +111,10 @@ def thermostat_check(
         steps,
         time.perf_counter() - start,
     )
+    return result, sampler
+
+
+def thermostat_check(law: str, **options) -> CheckResult:
+    """Run the passive check (options as in :func:`passive_run`) and return temperatures, errors,
+    KL divergences and the verdict."""
+    return passive_run(law, **options)[0]

@@ -14,6 +14,7 @@ import json
 import os
 from pathlib import Path
 
+import gsd.fl
 import gsd.hoomd
 import numpy as np
 
@@ -60,6 +61,23 @@ class GSDWriter:
 
     def __exit__(self, *exc) -> None:
         self.close()
+
+
+def truncate_trajectory(path: str | Path, step: int) -> None:
+    """Drop the frames after ``step`` (to resume from an earlier checkpoint), rewriting the file
+    atomically only if there are any."""
+    path = Path(path)
+    name = "configuration/step"  # omitted where it equals frame 0's (or, in frame 0, the default 0)
+    with gsd.fl.open(str(path), "r") as handle:
+        stored = [int(handle.read_chunk(i, name)[0]) if handle.chunk_exists(i, name) else None for i in range(handle.nframes)]
+    steps = [s if s is not None else (stored[0] or 0) for s in stored]
+    keep = sum(s <= step for s in steps)
+    if keep < len(steps):
+        temporary = path.with_name(path.name + ".tmp")
+        with gsd.hoomd.open(str(path), "r") as old, gsd.hoomd.open(str(temporary), "w") as new:
+            for frame in old[:keep]:
+                new.append(frame)
+        os.replace(temporary, path)
 
 
 def save_checkpoint(path: str | Path, simulation: Simulation) -> Path:

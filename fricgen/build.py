@@ -1,0 +1,106 @@
+"""From a validated run configuration to a simulation at step 0: the law and its kernels, the
+particles, the initial state (lattice or random, in the box or in the slab between walls), walls.
+
+Each failure is a :class:`~fricgen.config.ConfigError` naming the key, raised before any file is written.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .config import ConfigError, RunConfig, check_fraction, require, slab_half_height
+from .kernels import KernelError, load_law_kernels
+from .langevin import WCA_RANGE
+from .simulation import LangevinConfig, Simulation
+from .system import Particles, add_slab_walls, lattice_positions, packing_box, random_positions, thermal_state
+
+
+def langevin_config(c: RunConfig) -> LangevinConfig:
+    """The engine's configuration: law, thermostat, active and bulk forces, WCA strength, seed."""
+    law, thermostat = c.law, {key: getattr(c.thermostat, key) for key in ("kT", "dt", "gamma", "gamma_rot")}
+    return LangevinConfig(
+        **thermostat,
+        law=law.name,
+        calculus=law.calculus,
+        parameters=dict(law.parameters),
+        friction=law.friction,
+        contact_noise=law.contact_noise,
+        active_force=c.active.force,
+        bulk_force=(*c.bulk.force, 0.0, 0.0, 0.0)[:3],
+        epsilon=c.system.epsilon,
+        seed=c.run.seed,
+    )
+
+
+def check_law(c: RunConfig) -> None:
+    """The law is in the catalogue, its kernels are fresh, it has the calculus and the parameters."""
+    name = c.law.name
+    try:
+        kernels = load_law_kernels(name)
+    except KernelError as error:
+        raise ConfigError("law.name", str(error)) from error
+    require(
+        c.law.calculus in kernels.calculi,
+        "law.calculus",
+        f"law {name} has no {c.law.calculus!r} noise",
+        f"choose one of {list(kernels.calculi)}",
+    )
+    for key, value in c.law.parameters.items():
+        owner = {"sigma": "the radii (sigma_ik = R_i + R_k)", "epsilon": "system.epsilon (the WCA strength)"}.get(key)
+        require(owner is None, f"law.parameters.{key}", f"is set by {owner}", "remove it here")
+        require(
+            key in kernels.parameter_names,
+            f"law.parameters.{key}",
+            f"law {name} has no such parameter",
+            f"it has {kernels.parameter_names}",
+        )
+        require(
+            math.isfinite(value) and value > 0,
+            f"law.parameters.{key}",
+            f"must be finite and positive, got {value}",
+            "give a positive value",
+        )
+
+
+def build(c: RunConfig) -> Simulation:
+    """The simulation of a validated configuration, from its initial state (step 0)."""
+    check_law(c)
+    config, s, dim = langevin_config(c), c.system, c.system.dimension
+    if s.box is None:
+        box = packing_box(Particles.spheres(s.n, s.radius, s.mass), dim, s.packing_fraction)
+    else:
+        box = np.array([*s.box, 0.0][:3], dtype=float)
+    reach = 2 * (WCA_RANGE * 2 * s.radius + config.skin)
+    require(
+        box[:dim].min() > reach,
+        "system.box" if s.box is not None else "system.n",
+        f"the box {box[:dim].round(3).tolist()} is too small for the interaction range (each length must exceed {reach:.2f})",
+        "use more particles or a larger box",
+    )
+    region = box.copy()
+    if c.walls is not None:
+        region[1] = 2 * (c.walls.half_width - 2 * s.radius)
+    volume = np.prod(region[:dim])
+    per_particle = math.pi * s.radius**2 if dim == 2 else 4 / 3 * math.pi * s.radius**3
+    n = s.n if s.n is not None else max(2, round(s.packing_fraction * volume / per_particle))
+    if s.packing_fraction is None:
+        check_fraction("system.n", n * per_particle / volume, s)
+    particles = Particles.spheres(n, s.radius, s.mass)
+    place = region.copy()
+    if c.walls is not None:
+        place[1] = 2 * slab_half_height(c)
+    try:
+        if s.start == "lattice":
+            position = lattice_positions(n, place, dim, 2 * s.radius)
+        else:
+            position = random_positions(particles.radius, place, dim, seed=c.run.seed)
+    except ValueError as error:
+        raise ConfigError("system.packing_fraction" if s.packing_fraction is not None else "system.n", str(error), "lower it") from error
+    if c.walls is not None:
+        position[:, 1] += box[1] / 2 - slab_half_height(c)
+    state = thermal_state(particles, position, box, dim, c.thermostat.kT, c.run.seed)
+    if c.walls is not None:
+        particles, state = add_slab_walls(particles, state, c.walls.half_width, c.walls.roughness, c.run.seed, c.walls.spacing)
+    return Simulation(config, particles, state)
