@@ -4,19 +4,22 @@ Overdamped rods of length sigma, dx_i/dt = mu F_i + sqrt(2D) xi_i (B-1, B-27), o
 of length L. Per step dt:
 
 1. trial forces F_i = f(x_i) + F_drive + sum_j f_int(x_i, x_j) + sqrt(2D/dt)/mu N_i (B-11, B-28),
-   with N_i keyed on (seed, step, replica, i) (counter-based, reproducible);
+   with N_i a standard normal keyed on (seed, step, replica, i) (rng.ziggurat_normal: counter-based,
+   so a run is bit-identical in any chunking and on any number of threads);
 2. cluster analysis: each run of rods in contact is split recursively at the cut with the largest
    positive difference of mean forces (right minus left); pieces that cannot split move with
    mu times their mean force (B-4, B-5, B-12);
 3. event-driven propagation: the earliest collision inside the step merges the two clusters
    perfectly inelastically, velocity (m v_left + n v_right)/(m + n) (B-13..18), until t + dt (B-19).
+   Collisions wait in a heap and positions are extrapolated from t = 0, so an event costs
+   O(cluster size + log N), not O(N).
 
 Continuous pair forces act between neighbours (f_int of range sigma + eps < 2 sigma, e.g. the
 sticky force B-32). Positions are kept unwrapped and ordered (x_0 < ... < x_{N-1} < x_0 + L): rods
 never pass each other. Sampling after each step adds the rods of every period to histograms over
 one wavelength (B-24, B-25) and histograms the gaps r - sigma of neighbours at the left rod's bin:
 exact contacts (left by merging) apart, positive gaps in bins of width w (B-26; see rods.py for the
-estimate of the contact density).
+estimate of the contact density); the same pass checks that no two rods overlap.
 """
 
 from __future__ import annotations
@@ -28,7 +31,7 @@ import numpy as np
 from numba import types
 
 from .langevin import SCALAR_KERNEL
-from .rng import normal_pair_at, stream_key
+from .rng import fold_key, stream_key, ziggurat_normal
 
 BCD_STREAM = 4
 CONTACT_TOLERANCE = 1e-12  # relative to sigma: gaps below it are contacts
@@ -71,9 +74,74 @@ def _cluster_velocities(forces, members, count, mu, v, stack, prefix):
             top += 2
 
 
+@numba.njit(inline="always", cache=True)
+def _push(heap_t, heap_i, size, t, i):
+    """Insert event (t, i) into the binary min-heap heap_t[0:size]; returns the new size."""
+    k = size
+    while k > 0:
+        parent = (k - 1) >> 1
+        if heap_t[parent] <= t:
+            break
+        heap_t[k], heap_i[k] = heap_t[parent], heap_i[parent]
+        k = parent
+    heap_t[k], heap_i[k] = t, i
+    return size + 1
+
+
+@numba.njit(inline="always", cache=True)
+def _pop(heap_t, heap_i, size):
+    """Remove the earliest event of the heap; returns (t, i, new size)."""
+    t, i = heap_t[0], heap_i[0]
+    size -= 1
+    last_t, last_i = heap_t[size], heap_i[size]
+    k = 0
+    while True:
+        child = 2 * k + 1
+        if child >= size:
+            break
+        if child + 1 < size and heap_t[child + 1] < heap_t[child]:
+            child += 1
+        if heap_t[child] >= last_t:
+            break
+        heap_t[k], heap_i[k] = heap_t[child], heap_i[child]
+        k = child
+    heap_t[k], heap_i[k] = last_t, last_i
+    return t, i, size
+
+
 @numba.njit(cache=True)
-def _step(x, forces, v, length, sigma, mu, dt, members, stack, prefix):
-    """Cluster analysis, then event-driven propagation over dt; returns a status."""
+def _rebuild(heap_t, heap_i, when):
+    """A heap of the valid events only (time when[i] >= 0 for pair i); returns its size."""
+    size = 0
+    for i in range(when.size):
+        if when[i] >= 0.0:
+            size = _push(heap_t, heap_i, size, when[i], i)
+    return size
+
+
+@numba.njit(cache=True)
+def _schedule(x, v, i, now, length, sigma, dt, heap_t, heap_i, size, when):
+    """If rods i and i + 1 approach and touch before dt, at t = (x_{i+1} - x_i - sigma) / (v_i - v_{i+1})
+    (B-14; x: positions extrapolated to t = 0, x_i(t) = x_i + v_i t), push the event at
+    when[i] = max(t, now); else when[i] = -1. Returns the heap size."""
+    closing = v[i] - v[i + 1 if i + 1 < x.size else 0]
+    gap = _gap(x, i, length) - sigma
+    when[i] = -1.0
+    if closing > 0.0 and gap < closing * dt:
+        if size == heap_t.size:  # full of superseded events
+            size = _rebuild(heap_t, heap_i, when)
+        when[i] = max(gap / closing, now)
+        size = _push(heap_t, heap_i, size, when[i], i)
+    return size
+
+
+@numba.njit(cache=True)
+def _step(x, forces, v, length, sigma, mu, dt, members, stack, prefix, heap_t, heap_i, when):
+    """Cluster analysis, then event-driven propagation over dt; returns OK or ALL_IN_CONTACT.
+
+    During the step x holds the positions extrapolated to t = 0 (rod i is at x_i + v_i t), so that a
+    merge moves only the rods of its two clusters. Collisions wait in a heap; when[i] is the valid
+    time of pair i (-1: none), entries that disagree with it are superseded."""
     n = x.size
     tolerance = CONTACT_TOLERANCE * sigma
     start = -1
@@ -83,44 +151,73 @@ def _step(x, forces, v, length, sigma, mu, dt, members, stack, prefix):
             break
     if start < 0:
         return ALL_IN_CONTACT
-    count = 0
-    for offset in range(1, n + 1):
-        i = (start + offset) % n
+    count, i = 0, start
+    for _ in range(n):
+        i = i + 1 if i + 1 < n else 0
         members[count] = i
         count += 1
-        if _gap(x, i, length) - sigma > tolerance:  # i is the right end of its cluster
-            _cluster_velocities(forces, members, count, mu, v, stack, prefix)
+        if _gap(x, i, length) - sigma > tolerance:  # i ends the cluster members[0:count]
+            if count == 1:
+                v[i] = mu * forces[i]
+            else:
+                _cluster_velocities(forces, members, count, mu, v, stack, prefix)
             count = 0
-    elapsed = 0.0
-    while True:
-        first, when = -1, dt - elapsed
-        for i in range(n):
-            j = i + 1 if i + 1 < n else 0
-            if v[i] > v[j]:
-                t = (_gap(x, i, length) - sigma) / (v[i] - v[j])
-                if t < when:
-                    first, when = i, max(t, 0.0)
-        for i in range(n):
-            x[i] += v[i] * when
-        elapsed += when
-        if first < 0:
-            break
-        # merge the cluster ending at `first` with the one starting at first + 1 (B-17)
-        left, right = first, (first + 1) % n
-        m, k = 1, 1
-        while m < n and v[(left - m) % n] == v[left] and _gap(x, (left - m) % n, length) - sigma <= tolerance:
-            m += 1
-        while k < n and v[(right + k) % n] == v[right] and _gap(x, (right + k - 1) % n, length) - sigma <= tolerance:
-            k += 1
-        merged = (m * v[left] + k * v[right]) / (m + k)
-        for q in range(m):
-            v[(left - q) % n] = merged
-        for q in range(k):
-            v[(right + q) % n] = merged
+    size = 0
     for i in range(n):
-        if _gap(x, i, length) < sigma * (1.0 - 1e-9):
-            return PASSED
+        when[i] = -1.0
+        if _gap(x, i, length) - sigma < (v[i] - v[i + 1 if i + 1 < n else 0]) * dt:  # necessary; rarely true
+            size = _schedule(x, v, i, 0.0, length, sigma, dt, heap_t, heap_i, size, when)
+    while size > 0:
+        now, left, size = _pop(heap_t, heap_i, size)
+        if when[left] != now:  # superseded
+            continue
+        # merge the cluster ending at `left` with the one starting at `right` (B-17)
+        right = left + 1 if left + 1 < n else 0
+        a, b, m, k = left, right, 1, 1
+        while m + k < n:
+            c = a - 1 if a > 0 else n - 1
+            if v[c] != v[left] or _gap(x, c, length) - sigma > tolerance:
+                break
+            a, m = c, m + 1
+        while m + k < n:
+            c = b + 1 if b + 1 < n else 0
+            if v[c] != v[right] or _gap(x, b, length) - sigma > tolerance:
+                break
+            b, k = c, k + 1
+        merged = (m * v[left] + k * v[right]) / (m + k)
+        c = a
+        for _ in range(m + k):
+            x[c] += (v[c] - merged) * now  # the same x_c(now), now moving with `merged`
+            v[c] = merged
+            c = c + 1 if c + 1 < n else 0
+        when[left] = -1.0
+        if m + k < n:
+            size = _schedule(x, v, a - 1 if a > 0 else n - 1, now, length, sigma, dt, heap_t, heap_i, size, when)
+            size = _schedule(x, v, b, now, length, sigma, dt, heap_t, heap_i, size, when)
+    for i in range(n):
+        x[i] += v[i] * dt
     return OK
+
+
+@numba.njit(cache=True)
+def _sample(x, length, sigma, wavelength, gap_width, rho_counts, gap_counts):
+    """Add the rods to rho_counts[bin] and their gaps to gap_counts[bin, k] (see advance_rods);
+    returns PASSED if two rods overlap, else OK."""
+    n, bins, gap_bins = x.size, rho_counts.size, gap_counts.shape[1]
+    per_wavelength, per_gap, contact = 1.0 / wavelength, 1.0 / gap_width, CONTACT_TOLERANCE * sigma
+    status = OK
+    for i in range(n):
+        phase = x[i] * per_wavelength
+        b = int((phase - math.floor(phase)) * bins)
+        b = b if b < bins else 0
+        rho_counts[b] += 1.0
+        gap = _gap(x, i, length) - sigma
+        if gap < -1e-9 * sigma:
+            status = PASSED
+        k = 0 if gap <= contact else 1 + int(gap * per_gap)
+        if k < gap_bins:
+            gap_counts[b, k] += 1.0
+    return status
 
 
 @numba.njit(
@@ -137,34 +234,30 @@ def advance_rods(positions, length, sigma, mu, diffusion, dt, steps, first_step,
     failure status (PASSED: rods overlapped; ALL_IN_CONTACT: no gap left on the ring).
     """
     replicas, n = positions.shape
-    bins, gap_bins = gap_counts.shape[1], gap_counts.shape[2]
     status = np.zeros(replicas, dtype=np.int64)
     noise = math.sqrt(2.0 * diffusion / dt) / mu
     for r in numba.prange(replicas):
         x = positions[r]
-        forces, v, prefix = np.empty(n), np.empty(n), np.empty(n + 1)
+        forces, v, prefix, when = np.empty(n), np.empty(n), np.empty(n + 1), np.empty(n)
         members = np.empty(n, dtype=np.int64)
         stack = np.empty((2 * n + 2, 2), dtype=np.int64)
+        heap_t, heap_i = np.empty(3 * n), np.empty(3 * n, dtype=np.int64)  # n, then 2 per merge (< n merges)
         for s in range(steps):
-            key = stream_key(seed, first_step + s, BCD_STREAM)
+            key = fold_key(stream_key(seed, first_step + s, BCD_STREAM), r)
+            for i in range(n):  # the opaque kernel call and the inlined normals run faster in two loops
+                forces[i] = external(x[i], external_params)
             for i in range(n):
-                z = normal_pair_at(key, r, i >> 1, 0)
-                forces[i] = external(x[i], external_params) + drive + noise * (z[0] if i & 1 == 0 else z[1])
+                forces[i] += drive + noise * ziggurat_normal(key, i)
             if pair_on:
                 for i in range(n):
                     gap = _gap(x, i, length)
                     if gap < sigma + pair_range:
                         f = pair_force(gap, pair_params)  # on the right rod, from the left one (B-32)
-                        forces[(i + 1) % n] += f
+                        forces[i + 1 if i + 1 < n else 0] += f
                         forces[i] -= f
-            status[r] = _step(x, forces, v, length, sigma, mu, dt, members, stack, prefix)
+            status[r] = _step(x, forces, v, length, sigma, mu, dt, members, stack, prefix, heap_t, heap_i, when)
+            if status[r] == OK:
+                status[r] = _sample(x, length, sigma, wavelength, gap_width, rho_counts[r], gap_counts[r])
             if status[r] != OK:
                 break
-            for i in range(n):
-                b = int((x[i] / wavelength - math.floor(x[i] / wavelength)) * bins) % bins
-                rho_counts[r, b] += 1.0
-                gap = _gap(x, i, length) - sigma
-                k = 0 if gap <= CONTACT_TOLERANCE * sigma else 1 + int(gap / gap_width)
-                if k < gap_bins:
-                    gap_counts[r, b, k] += 1.0
     return status.max()
