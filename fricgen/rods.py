@@ -2,7 +2,8 @@
 
 Units as in the paper: lambda = 1, D = 1, kT = 1 (mu = D / kT). Observables are folded onto one
 wavelength: rho(x) (B-25) and rho_2(x, x + sigma) (B-26) at bin centres, with standard errors from
-block averages over time and over replicas.
+the scatter between independent replicas, each started from an equilibrium configuration sampled
+by Monte Carlo (rods_mc).
 
 Time-step error: after a BCD step the rods of a merged cluster touch exactly (gap 0). This atom of
 exact contacts holds about 0.7 rho_2(0) s of pair density, s = sqrt(4 D dt) the rms change of a gap
@@ -13,7 +14,7 @@ dt = 1e-5, 2 % at 1e-6).
 
 Contact density (B-26): the pair density at gap g beyond the layer, g in [3 s, 3 s + fit_bins w],
 is fitted per bin by ln rho_2(x, g) = a + b g and extrapolated to g = 0; the exact contacts are
-not counted. Errors by jackknife over blocks and replicas.
+not counted. Errors by jackknife over replicas.
 """
 
 from __future__ import annotations
@@ -24,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import bcd
+from . import bcd, rods_mc
 from .kernels import load_potential
 from .rng import INITIAL, normals
 from .rods_theory import RodProfile, rod_profile
@@ -33,7 +34,8 @@ from .rods_theory import RodProfile, rod_profile
 @dataclass(frozen=True)
 class RodConfig:
     """A BCD run: N rods of length sigma on a ring of length L in (U0/2) cos(2 pi x / lambda) (B-21),
-    optional drive, optional sticky contact (B-31/32) of strength gamma (0: hard rods)."""
+    optional drive, optional sticky contact (B-31/32) of strength gamma (0: hard rods). The rods
+    start from ``start_sweeps`` Monte Carlo sweeps of the equilibrium ensemble (rods_mc)."""
 
     n: int = 50
     length: float = 100.0
@@ -53,10 +55,11 @@ class RodConfig:
     gap_width: float = 0.005
     gap_bins: int = 40
     fit_bins: int = 8
+    start_sweeps: int = 2000
 
     def __post_init__(self):
-        if self.n < 2 or self.replicas < 1 or self.bins < 1:
-            raise ValueError("need n >= 2 rods, replicas >= 1 and bins >= 1")
+        if self.n < 2 or self.replicas < 1 or self.bins < 1 or self.start_sweeps < 0:
+            raise ValueError("need n >= 2 rods, replicas >= 1, bins >= 1 and start_sweeps >= 0")
         for name in ("length", "sigma", "wavelength", "kT", "mu", "dt", "eps", "gap_width"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} must be positive, got {getattr(self, name)}")
@@ -109,7 +112,7 @@ class RodProfiles:
 
 
 class RodSimulation:
-    """Replicas of one ring, evolved by BCD; ``run`` samples profiles in blocks."""
+    """Independent replicas of one ring, started from equilibrium (Monte Carlo) and evolved by BCD."""
 
     def __init__(self, config: RodConfig):
         self.config = config
@@ -117,10 +120,12 @@ class RodSimulation:
             warnings.warn(f"mu max|f| dt / eps = {stability_ratio(config):.2g} is not << 1 (B-33): reduce dt", stacklevel=2)
         cosine = load_potential("cosine")
         sticky = load_potential("sticky")
+        self._cosine, self._sticky = cosine, sticky
         self._external = (cosine.force, np.array([config.U0, config.wavelength]))
         self._pair = (sticky.force, np.array([config.gamma, config.p, config.eps, config.sigma, config.kT]))
         self.positions = self._initial()
-        self.step = 0
+        self.step, self.sweep = 0, 0
+        self.acceptance = self.thermalize(config.start_sweeps)
 
     def _initial(self) -> np.ndarray:
         """Evenly spaced rods with a small random shift per replica (no overlaps)."""
@@ -129,6 +134,28 @@ class RodSimulation:
         shift = normals(c.seed, 0, INITIAL, c.replicas) * 0.1 * (spacing - c.sigma)
         base = np.arange(c.n) * spacing
         return np.ascontiguousarray(base[None, :] + shift[:, None] % spacing)
+
+    def thermalize(self, sweeps: int) -> float:
+        """Metropolis sweeps (rods_mc) towards the exact equilibrium of the configuration's model, with no
+        time step: the wells fill as in equilibrium at once. Returns the acceptance ratio."""
+        c = self.config
+        acceptance = rods_mc.metropolis_sweeps(
+            self.positions,
+            c.length,
+            c.sigma,
+            c.kT,
+            self._cosine.energy,
+            self._external[1],
+            self._sticky.energy,
+            self._pair[1],
+            c.sigma + c.eps,
+            c.gamma > 0,
+            sweeps,
+            self.sweep,
+            c.seed,
+        )
+        self.sweep += sweeps
+        return acceptance
 
     def equilibrate(self, duration: float, dt: float | None = None) -> None:
         """Run ``duration`` time units without sampling, at time step ``dt`` (default: the config's)."""
@@ -167,37 +194,38 @@ class RodSimulation:
             raise RuntimeError("all rods are in contact (close packing): BCD cannot split the ring")
         self.step += steps
 
-    def run(self, steps: int, blocks: int = 20) -> RodProfiles:
-        """Sample ``steps`` steps in ``blocks`` blocks; errors from block-to-block scatter."""
+    def run(self, steps: int) -> RodProfiles:
+        """Sample ``steps`` steps; the replicas are the independent samples of the errors.
+
+        Within one ring the occupation of the wells changes only by hopping over the barriers (about
+        20 time units per rod at U0 = 6), longer than a typical run, so time blocks of one ring are not
+        independent; replicas started from independent equilibrium configurations are."""
         c = self.config
-        if steps < blocks:
-            raise ValueError("need at least one step per block")
-        per_block = steps // blocks
+        if c.replicas < 2:
+            raise ValueError("errors come from the scatter between independent replicas: need replicas >= 2 (8 or more for chi^2)")
+        if steps < 1:
+            raise ValueError("need at least one step")
         width = c.wavelength / c.bins
-        scale = per_block * width * c.length / c.wavelength  # sampled length per bin
-        rho_blocks, gap_blocks = [], []
-        for _ in range(blocks):
-            rods, gaps = np.zeros((c.replicas, c.bins)), np.zeros((c.replicas, c.bins, c.gap_bins))
-            self.advance(per_block, (rods, gaps))
-            rho_blocks.append(rods / scale)
-            gap_blocks.append(gaps / (scale * c.gap_width))
-        rho = np.concatenate(rho_blocks)  # (blocks * replicas, bins)
-        contact, contact_err = self._contact(np.concatenate(gap_blocks))
+        scale = steps * width * c.length / c.wavelength  # sampled length per bin
+        rods, gaps = np.zeros((c.replicas, c.bins)), np.zeros((c.replicas, c.bins, c.gap_bins))
+        self.advance(steps, (rods, gaps))
+        rho = rods / scale
+        contact, contact_err = self._contact(gaps / (scale * c.gap_width))
         return RodProfiles(
             (np.arange(c.bins) + 0.5) * width,
             rho.mean(0),
-            rho.std(0, ddof=1) / math.sqrt(rho.shape[0]),
+            rho.std(0, ddof=1) / math.sqrt(c.replicas),
             contact,
             contact_err,
-            per_block * blocks,
+            steps,
         )
 
     def _contact(self, pair_density: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """rho_2 at contact per bin from samples of the gap histogram (samples, bins, gap bins).
+        """rho_2 at contact per bin from the gap histograms of the replicas (replicas, bins, gap bins).
 
         Beyond the BCD layer, g >= g0, the mean pair densities A and B over two windows
         [g0, g0 + d) and [g0 + d, g0 + 2d) fix rho_2(g) = rho_2(0) exp(-k g): k = ln(A / B) / d,
-        rho_2(0) = A exp(k g0) (k d) / (1 - exp(-k d)). Errors by jackknife over the samples."""
+        rho_2(0) = A exp(k g0) (k d) / (1 - exp(-k d)). Errors by jackknife over the replicas."""
         c = self.config
         first = 1 + math.ceil(3 * math.sqrt(4 * c.diffusion * c.dt) / c.gap_width)
         half = c.fit_bins // 2

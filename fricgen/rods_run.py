@@ -9,20 +9,17 @@ from pathlib import Path
 
 import numpy as np
 
-from .rods import RodConfig, RodProfiles, RodSimulation, deviations, exact_profile, extrapolate_to_zero_dt, sticky_force_max
+from .rods import RodConfig, RodProfiles, RodSimulation, deviations, exact_profile, extrapolate_to_zero_dt
 from .rods_theory import RodProfile, rod_profile
 
 REFINEMENT = 4  # --extrapolate: a second run at dt / 4
 
 
 def _sample(config: RodConfig, duration: float, equilibration: float) -> RodProfiles:
-    """Equilibrate at a coarse step (1e-4, or where the sticky force needs it mu max|f| dt = eps / 10, B-33), then sample."""
-    coarse = 1e-4
-    if config.gamma > 0:
-        coarse = min(coarse, 0.1 * config.eps / (config.mu * sticky_force_max(config.gamma, config.p, config.eps, config.kT)))
+    """From the Monte Carlo equilibrium start, ``equilibration`` at dt (the BCD contact layer forms), then sample."""
     simulation = RodSimulation(config)
-    simulation.equilibrate(equilibration, dt=max(config.dt, coarse))
-    return simulation.run(max(20, round(duration / config.dt)))
+    simulation.equilibrate(equilibration)
+    return simulation.run(max(1, round(duration / config.dt)))
 
 
 def study(config: RodConfig, duration: float, equilibration: float, out: Path, extrapolate: bool = False) -> dict:
