@@ -69,9 +69,15 @@ def normals(seed, step, stream, count):
 
 
 @numba.njit(inline="always", cache=True)
+def _word(key, i):
+    """Output i of the SplitMix64 sequence that starts from state ``key``: 64 random bits for (key, i)."""
+    return _mix(np.uint64(key) + np.uint64(i) * _GOLDEN)
+
+
+@numba.njit(inline="always", cache=True)
 def uniform(key, i):
     """A uniform number in [0, 1) for (key, i), 53 bits."""
-    return float(_mix(np.uint64(key) + np.uint64(i) * _GOLDEN) >> _S11) * _TWO_53
+    return float(_word(key, i) >> _S11) * _TWO_53
 
 
 @numba.njit(inline="always", cache=True)
@@ -140,9 +146,9 @@ def _ziggurat_slow(z):
 @numba.njit(inline="always", cache=True)
 def ziggurat_normal(key, i):
     """A standard normal for (key, i), exact (ziggurat, 256 layers): one SplitMix64 output
-    z = mix(key + i gamma) gives the layer (bits 0-7), the sign (bit 8) and u (bits 11-63);
+    z = _word(key, i) gives the layer (bits 0-7), the sign (bit 8) and u (bits 11-63);
     x = u w_layer is returned when u < k_layer (99 %), otherwise ``_ziggurat_slow`` decides."""
-    z = _mix(np.uint64(key) + np.uint64(i) * _GOLDEN)
+    z = _word(key, i)
     layer, u = z & _LAYER, z >> _S11
     if u < _ZIG_K[layer]:
         x = float(u) * _ZIG_W[layer]

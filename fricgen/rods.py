@@ -118,11 +118,9 @@ class RodSimulation:
         self.config = config
         if stability_ratio(config) > 0.1:
             warnings.warn(f"mu max|f| dt / eps = {stability_ratio(config):.2g} is not << 1 (B-33): reduce dt", stacklevel=2)
-        cosine = load_potential("cosine")
-        sticky = load_potential("sticky")
-        self._cosine, self._sticky = cosine, sticky
-        self._external = (cosine.force, np.array([config.U0, config.wavelength]))
-        self._pair = (sticky.force, np.array([config.gamma, config.p, config.eps, config.sigma, config.kT]))
+        self._cosine, self._sticky = load_potential("cosine"), load_potential("sticky")  # energy and force kernels
+        self._cosine_params = np.array([config.U0, config.wavelength])
+        self._sticky_params = np.array([config.gamma, config.p, config.eps, config.sigma, config.kT])
         self.positions = self._initial()
         self.step, self.sweep = 0, 0
         self.acceptance = self.thermalize(config.start_sweeps)
@@ -145,9 +143,9 @@ class RodSimulation:
             c.sigma,
             c.kT,
             self._cosine.energy,
-            self._external[1],
+            self._cosine_params,
             self._sticky.energy,
-            self._pair[1],
+            self._sticky_params,
             c.sigma + c.eps,
             c.gamma > 0,
             sweeps,
@@ -177,11 +175,11 @@ class RodSimulation:
             steps,
             self.step,
             c.seed,
-            self._external[0],
-            self._external[1],
+            self._cosine.force,
+            self._cosine_params,
             c.drive,
-            self._pair[0],
-            self._pair[1],
+            self._sticky.force,
+            self._sticky_params,
             c.eps,
             c.gamma > 0,
             c.wavelength,
