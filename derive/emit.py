@@ -6,7 +6,7 @@ Layout written by :func:`generate`::
     generated/special.py              erfcx (copied from derive/kernel_sources/special.py)
     generated/laws/<law>.py           weight, friction, friction_over_u, and per calculus
                                       noise_amplitude_<c>, noise_sqrt_<c>, contact_<c>
-    generated/potentials/<name>.py    energy, force
+    generated/potentials/<name>.py    energy, force; external potentials U(x) also force_field
 
 Kernel signatures are uniform so that engines can use any law: ``friction(u, w, r, params)`` and
 ``noise_amplitude_<c>(u, w, r, mu, kT, params)`` with params the parameter values in the order of the
@@ -41,6 +41,7 @@ SIGNATURES = {
     "x, params": "float64(float64, float64[::1])",
     "u, w, r, params": "float64(float64, float64, float64, float64[::1])",
     "u, w, r, mu, kT, params": "float64(float64, float64, float64, float64, float64, float64[::1])",
+    "xs, params, out": "void(float64[::1], float64[::1], float64[::1])",
 }
 CONTACT_SIGNATURE = "UniTuple(float64, 2)(float64, float64, float64, float64, float64, float64[::1])"
 
@@ -224,8 +225,19 @@ def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, sou
     return "".join(parts) + code
 
 
+_FIELD_KERNEL = '''
+{decorator}
+def force_field(xs, params, out):
+    """out[i] = force(xs[i], params) at every position xs[i]: one call per configuration, the
+    scalar kernel inlined (an engine calling force per particle pays an indirect call each time)."""
+    for i in range(xs.size):
+        out[i] = force(xs[i], params)
+'''
+
+
 def potential_module(potential: Potential) -> str:
-    """The text of ``generated/potentials/<name>.py``: energy and force of a potential."""
+    """The text of ``generated/potentials/<name>.py``: energy and force of a potential, and for an
+    external potential U(x) the force at many positions, force_field(xs, params, out)."""
     names = list(potential.defaults) + (["kT"] if potential.energy.has(kT) else [])
     symbols = {**potential.symbols, "kT": kT}
     params = [symbols[n] for n in names]
@@ -245,6 +257,8 @@ def potential_module(potential: Potential) -> str:
         _kernel("energy", f"{var}, params", potential.energy, f"U({var}) = {potential.energy}", params),
         _kernel("force", f"{var}, params", potential.force, f"-dU/d{var}", params),
     ]
+    if potential.name in EXTERNAL_POTENTIALS:
+        functions.append(_FIELD_KERNEL.format(decorator=_decorator("xs, params, out")).lstrip("\n"))
     return header + _quote_doc(doc) + "\n" + "import math\n" + "import numba\n" + constants + "".join("\n\n" + f for f in functions)
 
 

@@ -4,6 +4,7 @@ Overdamped rods of length sigma, dx_i/dt = mu F_i + sqrt(2D) xi_i (B-1, B-27), o
 of length L. Per step dt:
 
 1. trial forces F_i = f(x_i) + F_drive + sum_j f_int(x_i, x_j) + sqrt(2D/dt)/mu N_i (B-11, B-28),
+   f from the external potential's force_field kernel (one call per step for all rods),
    with N_i a standard normal keyed on (seed, step, replica, i) (rng.ziggurat_normal: counter-based,
    so a run is bit-identical in any chunking and on any number of threads);
 2. cluster analysis: each run of rods in contact is split recursively at the cut with the largest
@@ -39,6 +40,7 @@ OK, PASSED, ALL_IN_CONTACT = 0, 1, 2
 
 _F, _I, _B = types.float64, types.int64, types.boolean
 _V, _M, _T = types.Array(_F, 1, "C"), types.Array(_F, 2, "C"), types.Array(_F, 3, "C")
+FIELD_KERNEL = types.FunctionType(types.void(_V, _V, _V))  # force_field(xs, params, out) of an external potential
 
 
 @numba.njit(inline="always", cache=True)
@@ -221,7 +223,7 @@ def _sample(x, length, sigma, wavelength, gap_width, rho_counts, gap_counts):
 
 
 @numba.njit(
-    _I(_M, _F, _F, _F, _F, _F, _I, _I, _I, SCALAR_KERNEL, _V, _F, SCALAR_KERNEL, _V, _F, _B, _F, _F, _M, _T),
+    _I(_M, _F, _F, _F, _F, _F, _I, _I, _I, FIELD_KERNEL, _V, _F, SCALAR_KERNEL, _V, _F, _B, _F, _F, _M, _T),
     parallel=True,
     cache=True,
 )  # fmt: skip
@@ -244,8 +246,7 @@ def advance_rods(positions, length, sigma, mu, diffusion, dt, steps, first_step,
         heap_t, heap_i = np.empty(3 * n), np.empty(3 * n, dtype=np.int64)  # n, then 2 per merge (< n merges)
         for s in range(steps):
             key = fold_key(stream_key(seed, first_step + s, BCD_STREAM), r)
-            for i in range(n):  # the opaque kernel call and the inlined normals run faster in two loops
-                forces[i] = external(x[i], external_params)
+            external(x, external_params, forces)
             for i in range(n):
                 forces[i] += drive + noise * ziggurat_normal(key, i)
             if pair_on:

@@ -114,7 +114,8 @@ def load_law_kernels(name: str, catalogue: Path = CATALOGUE) -> LawKernels:
 
 
 def load_potential(name: str) -> ModuleType:
-    """Generated potential module (energy(x, params), force(x, params), PARAMETERS, DEFAULTS)."""
+    """Generated potential module (energy(x, params), force(x, params), PARAMETERS, DEFAULTS; external
+    potentials also force_field(xs, params, out))."""
     try:
         return importlib.import_module(f"generated.potentials.{name}")
     except ModuleNotFoundError as error:

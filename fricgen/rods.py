@@ -175,7 +175,7 @@ class RodSimulation:
             steps,
             self.step,
             c.seed,
-            self._cosine.force,
+            self._cosine.force_field,
             self._cosine_params,
             c.drive,
             self._sticky.force,

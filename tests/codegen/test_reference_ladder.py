@@ -113,3 +113,8 @@ def test_potential_kernels_match_their_expressions(potential):
     for x in np.linspace(lo, lo + 1.3, 97):
         assert module.energy(x, params) == pytest.approx(float(energy(x)), rel=1e-12, abs=1e-12)
         assert module.force(x, params) == pytest.approx(float(force(x)), rel=1e-12, abs=1e-11)
+    if potential.name in EXTERNAL_POTENTIALS:  # the field kernel is the scalar one, bit for bit
+        xs = np.concatenate([np.linspace(-3.0, 3.0, 61), [0.0, 1e-300, 1e4 + 0.3]])
+        out = np.full(xs.size, np.nan)
+        module.force_field(xs, params, out)
+        assert np.array_equal(out, [module.force(x, params) for x in xs])
