@@ -3,9 +3,8 @@
 Hard rods, U0 = 6, lambda = 1, sigma = 0.5, L = 100, 16 replicas started from Monte Carlo
 equilibrium, 0.25 time units of BCD at each dt, then sampled for T time units: L1 / rho_bar and chi^2 per bin of the profile
 and the contact density ratio against the exact theory, and the Richardson extrapolation in
-sqrt(dt) from the two smallest steps. BCD's bias is O(sqrt(dt)) (see fricgen.rods). Then the wall
-time to a profile within 1 % (L1 / rho_bar) of the exact theory at rho_bar sigma = 0.7, dt = 1e-5,
-start included (16 replicas on the available threads; chunks of 0.05 time units).
+sqrt(dt) from the two smallest steps. BCD's bias is O(sqrt(dt)) (see fricgen.rods). The speed
+figures (CPU per particle-step, wall time to a 1 % profile) are in benchmarks/bcd.py.
 Run: python benchmarks/bcd_timestep.py [T]
 """
 
@@ -13,8 +12,6 @@ from __future__ import annotations
 
 import sys
 import time
-
-import numpy as np
 
 from fricgen.rods import RodConfig, RodSimulation, deviations, exact_profile, extrapolate_to_zero_dt
 
@@ -43,29 +40,7 @@ def report(label: str, figures: dict[str, float], seconds: float) -> None:
     )
 
 
-def time_to_one_percent(chunk: float = 0.05, limit: float = 20.0) -> None:
-    """Sample in chunks; report when the L1 deviation of the running profile first falls below 1 %."""
-    config = RodConfig(n=140, length=100.0, sigma=0.5, dt=1e-5, replicas=16, bins=25, seed=11)
-    exact = exact_profile(config).bin_means(config.bins)
-    start = time.perf_counter()
-    simulation = RodSimulation(config)
-    simulation.equilibrate(0.25)
-    rods, gaps = np.zeros((config.replicas, config.bins)), np.zeros((config.replicas, config.bins, config.gap_bins))
-    sampled = 0.0
-    while sampled < limit:
-        simulation.advance(round(chunk / config.dt), (rods, gaps))
-        sampled += chunk
-        rho = rods.sum(0) / rods.sum() * config.bins * config.mean_density
-        l1 = np.mean(np.abs(rho - exact)) / config.mean_density
-        if l1 < 0.01:
-            seconds = time.perf_counter() - start
-            print(f"rho_bar sigma = 0.70, dt = 1e-5: L1/rho = {l1:.4f} after {sampled:g} time units, {seconds:.1f} s wall")
-            return
-    print(f"rho_bar sigma = 0.70: L1/rho still {l1:.4f} after {limit:g} time units")
-
-
 if __name__ == "__main__":
     duration = float(sys.argv[1]) if len(sys.argv) > 1 else 1.25
     for n in (40, 140):
         study(n, duration)
-    time_to_one_percent()
