@@ -26,7 +26,7 @@ from sympy.integrals.quadrature import gauss_legendre
 from .lawdata import CATALOGUE, GENERATOR_VERSION, read_law_data, source_hash
 from .laws import FrictionLaw, load_law
 from .noise import NoiseModel, branches, derive_noise
-from .potentials import EXTERNAL_POTENTIALS, PAIR_POTENTIALS, Potential
+from .potentials import EXTERNAL_POTENTIALS, PAIR_POTENTIALS, Potential, check_external
 from .printer import KernelPrinter, fold_constants, stabilize
 from .symbols import kT, u
 from .verification import Report, verify
@@ -317,6 +317,11 @@ def generate(names: list[str] | None = None, catalogue: Path = CATALOGUE, output
         write_if_changed(output / "laws" / "__init__.py", _package("Kernels of the friction laws, one module per law.\n")),
         write_if_changed(output / "potentials" / "__init__.py", _package("Kernels of the conservative potentials.\n")),
     ]
+    for potential in EXTERNAL_POTENTIALS.values():
+        try:
+            check_external(potential)
+        except ValueError as error:
+            raise GenerationError(f"{error}: nothing emitted") from error
     for potential in {**PAIR_POTENTIALS, **EXTERNAL_POTENTIALS}.values():
         written.append(write_if_changed(output / "potentials" / f"{potential.name}.py", potential_module(potential)))
     reports = []

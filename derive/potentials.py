@@ -6,6 +6,12 @@
   sigma <= r < sigma + eps (the hard core r < sigma is enforced by the dynamics), zero beyond.
   Its force is (B-32).
 - ``cosine``: external potential U(x) = (U0/2) cos(2 pi x / lambda) (B-21).
+- ``ratchet``: the asymmetric (ratchet) external potential
+  U(x) = (U0/2) [sin(2 pi x / lambda) + (a/4) sin(4 pi x / lambda)] (Bartussek, Hänggi & Kissner,
+  Europhys. Lett. 28, 459 (1994)); a = 0 is the cosine field shifted by a quarter wavelength.
+
+External potentials are periodic fields of amplitude ``U0`` (kT) and period ``lambda``, both
+parameters (the BCD engine folds its profiles onto one period): see check_external.
 """
 
 from __future__ import annotations
@@ -73,7 +79,29 @@ def _cosine() -> Potential:
     return Potential("cosine", energy, x, {"U0": 6.0, "lambda": 1.0}, {"U0": "kT", "lambda": "sigma"}, "B-21")
 
 
+def _ratchet() -> Potential:
+    amplitude, wavelength = sp.symbols("U0 lambda", positive=True)
+    asymmetry = sp.Symbol("a", real=True)
+    phase = 2 * sp.pi * x / wavelength
+    energy = amplitude / 2 * (sp.sin(phase) + asymmetry / 4 * sp.sin(2 * phase))
+    return Potential(
+        "ratchet", energy, x, {"U0": 6.0, "lambda": 1.0, "a": 1.0}, {"U0": "kT", "lambda": "sigma", "a": "1"}, "Bartussek et al. 1994"
+    )
+
+
+def check_external(potential: Potential) -> None:
+    """Raise ValueError unless U(x; U0, lambda, ...) has the parameters U0 and lambda and
+    U(x + lambda) - U(x) simplifies to exactly 0."""
+    missing = {"U0", "lambda"} - set(potential.symbols)
+    if potential.variable != x or missing:
+        raise ValueError(f"external potential {potential.name} must be U(x) with parameters U0 and lambda (missing {sorted(missing)})")
+    shift = potential.energy.subs(x, x + potential.symbols["lambda"]) - potential.energy
+    if sp.simplify(sp.expand_trig(shift)) != 0:
+        difference = sp.simplify(shift)
+        raise ValueError(f"external potential {potential.name} is not periodic with period lambda: U(x + lambda) - U(x) = {difference}")
+
+
 #: Pair potentials U(r); a law's weight may name one (w = -dU/dr).
 PAIR_POTENTIALS: dict[str, Potential] = {p.name: p for p in (_wca(), _sticky())}
 #: External potentials U(x).
-EXTERNAL_POTENTIALS: dict[str, Potential] = {p.name: p for p in (_cosine(),)}
+EXTERNAL_POTENTIALS: dict[str, Potential] = {p.name: p for p in (_cosine(), _ratchet())}

@@ -199,13 +199,13 @@ def _bcd(args: argparse.Namespace) -> int:
     from fricgen.rods import RodConfig
     from fricgen.rods_run import study
 
-    names = ("n", "length", "sigma", "U0", "gamma", "p", "eps", "dt", "seed", "replicas", "bins")
+    names = ("n", "length", "sigma", "U0", "field", "gamma", "p", "eps", "dt", "seed", "replicas", "bins")
     try:
-        config = RodConfig(**{name: getattr(args, name) for name in names})
+        config = RodConfig(**{name: getattr(args, name) for name in names}, field_params=dict(args.field_param))
         if not (args.time > 0 and args.equilibrate >= 0):
             raise ValueError("--time must be positive and --equilibrate >= 0")
         summary = study(config, args.time, args.equilibrate, Path(args.out), extrapolate=args.extrapolate)
-    except (ValueError, RuntimeError) as error:
+    except (ValueError, RuntimeError, LookupError) as error:
         print(f"fricgen bcd: {error}", file=sys.stderr)
         return 2
     if args.json:
@@ -274,11 +274,13 @@ def parser() -> argparse.ArgumentParser:
     run.add_argument("--json", action="store_true", help="print the summary as JSON")
     run.set_defaults(run=_run)
 
-    bcd = commands.add_parser("bcd", help="hard or sticky rods in a cosine field by BCD, against the exact theory")
+    bcd = commands.add_parser("bcd", help="hard or sticky rods in a periodic field (cosine by default) by BCD, against the exact theory")
     bcd.add_argument("--n", type=int, default=50, help="rods per ring (default 50)")
     bcd.add_argument("--length", type=float, default=100.0, help="ring length L in wavelengths (default 100)")
     bcd.add_argument("--sigma", type=float, default=0.5, help="rod length (default 0.5)")
-    bcd.add_argument("--U0", type=float, default=6.0, help="amplitude of U = (U0/2) cos(2 pi x) in kT (default 6)")
+    bcd.add_argument("--U0", type=float, default=6.0, help="amplitude of the field in kT, U = (U0/2) cos(2 pi x) by default (default 6)")
+    bcd.add_argument("--field", default="cosine", help="a generated external potential (default cosine; also ratchet)")
+    bcd.add_argument("--field-param", type=_assignment, action="append", default=[], metavar="NAME=VALUE", help="other field parameters")
     bcd.add_argument("--gamma", type=float, default=0.0, help="Baxter stickiness (default 0: hard rods)")
     bcd.add_argument("--p", type=float, default=3.0, help="exponent of the delta_eps representation (B-31)")
     bcd.add_argument("--eps", type=float, default=0.05, help="range of the delta_eps representation (B-31)")

@@ -119,4 +119,7 @@ def load_potential(name: str) -> ModuleType:
     try:
         return importlib.import_module(f"generated.potentials.{name}")
     except ModuleNotFoundError as error:
-        raise KernelError(f"no generated potential {name!r}: run `fricgen generate`") from error
+        import generated.potentials
+
+        there = sorted(p.stem for p in Path(generated.potentials.__file__).parent.glob("*.py") if p.stem != "__init__")
+        raise KernelError(f"no generated potential {name!r} (there are {there}): a new one needs `fricgen generate`") from error

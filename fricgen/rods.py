@@ -1,5 +1,7 @@
 """Hard (and sticky) rods in an external field with BCD: configuration, runs, profiles with errors.
 
+The field is any generated external potential U(x; U0, lambda, ...) (derive/potentials.py: periodic
+with period lambda, checked symbolically when it is generated), the cosine (B-21) by default.
 Units as in the paper: lambda = 1, D = 1, kT = 1 (mu = D / kT). Observables are folded onto one
 wavelength: rho(x) (B-25) and rho_2(x, x + sigma) (B-26) at bin centres, with standard errors from
 the scatter between independent replicas, each started from an equilibrium configuration sampled
@@ -19,9 +21,12 @@ not counted. Errors by jackknife over replicas.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import warnings
+from collections.abc import Callable
 from dataclasses import dataclass
+from types import ModuleType
 
 import numpy as np
 
@@ -33,15 +38,19 @@ from .rods_theory import RodProfile, rod_profile
 
 @dataclass(frozen=True)
 class RodConfig:
-    """A BCD run: N rods of length sigma on a ring of length L in (U0/2) cos(2 pi x / lambda) (B-21),
-    optional drive, optional sticky contact (B-31/32) of strength gamma (0: hard rods). The rods
-    start from ``start_sweeps`` Monte Carlo sweeps of the equilibrium ensemble (rods_mc)."""
+    """A BCD run: N rods of length sigma on a ring of length L in the external potential ``field``
+    (generated/potentials/<field>.py; default (U0/2) cos(2 pi x / lambda), B-21) of amplitude U0 and
+    period lambda = wavelength, its other parameters from ``field_params`` (else the module's
+    defaults), optional drive, optional sticky contact (B-31/32) of strength gamma (0: hard rods).
+    The rods start from ``start_sweeps`` Monte Carlo sweeps of the equilibrium ensemble (rods_mc)."""
 
     n: int = 50
     length: float = 100.0
     sigma: float = 0.5
     U0: float = 6.0
     wavelength: float = 1.0
+    field: str = "cosine"
+    field_params: dict[str, float] = dataclasses.field(default_factory=dict)
     kT: float = 1.0
     mu: float = 1.0
     drive: float = 0.0
@@ -69,6 +78,10 @@ class RodConfig:
             raise ValueError("the ring length must be a whole number of wavelengths")
         if self.gamma < 0 or self.p <= 1 or self.eps >= self.sigma:
             raise ValueError("need gamma >= 0, p > 1 (continuous force, B-31) and eps < sigma")
+        if {"U0", "lambda"} & set(self.field_params):
+            raise ValueError("set the field's amplitude and period with U0 and wavelength, not field_params")
+        if not all(math.isfinite(v) for v in self.field_params.values()):
+            raise ValueError(f"field parameters must be finite numbers, got {self.field_params}")
 
     @property
     def diffusion(self) -> float:
@@ -77,6 +90,25 @@ class RodConfig:
     @property
     def mean_density(self) -> float:
         return self.n / self.length
+
+
+def field_kernels(config: RodConfig) -> tuple[ModuleType, np.ndarray]:
+    """The generated external potential of a configuration and its parameter values in the order of
+    its PARAMETERS: U0 and lambda from U0 and wavelength, the others from field_params or its defaults."""
+    module = load_potential(config.field)
+    if not hasattr(module, "force_field"):
+        raise ValueError(f"{config.field!r} is a pair potential, not an external field U(x)")
+    unknown = sorted(set(config.field_params) - set(module.PARAMETERS))
+    if unknown:
+        raise ValueError(f"field {config.field!r} has no parameter(s) {unknown}; its parameters are {module.PARAMETERS}")
+    values = dict(zip(module.PARAMETERS, module.DEFAULTS)) | config.field_params | {"U0": config.U0, "lambda": config.wavelength}
+    return module, np.array([float(values[name]) for name in module.PARAMETERS])
+
+
+def field_energy(config: RodConfig) -> Callable[[np.ndarray], np.ndarray]:
+    """U(x) of the configuration's field, for arrays of positions (the exact theory's input)."""
+    module, params = field_kernels(config)
+    return np.vectorize(lambda x: module.energy(float(x), params), otypes=[float])
 
 
 def sticky_force_max(gamma: float, p: float, eps: float, kT: float = 1.0, samples: int = 4001) -> float:
@@ -118,8 +150,8 @@ class RodSimulation:
         self.config = config
         if stability_ratio(config) > 0.1:
             warnings.warn(f"mu max|f| dt / eps = {stability_ratio(config):.2g} is not << 1 (B-33): reduce dt", stacklevel=2)
-        self._cosine, self._sticky = load_potential("cosine"), load_potential("sticky")  # energy and force kernels
-        self._cosine_params = np.array([config.U0, config.wavelength])
+        self._field, self._field_params = field_kernels(config)  # energy and force kernels
+        self._sticky = load_potential("sticky")
         self._sticky_params = np.array([config.gamma, config.p, config.eps, config.sigma, config.kT])
         self.positions = self._initial()
         self.step, self.sweep = 0, 0
@@ -142,8 +174,8 @@ class RodSimulation:
             c.length,
             c.sigma,
             c.kT,
-            self._cosine.energy,
-            self._cosine_params,
+            self._field.energy,
+            self._field_params,
             self._sticky.energy,
             self._sticky_params,
             c.sigma + c.eps,
@@ -175,8 +207,8 @@ class RodSimulation:
             steps,
             self.step,
             c.seed,
-            self._cosine.force_field,
-            self._cosine_params,
+            self._field.force_field,
+            self._field_params,
             c.drive,
             self._sticky.force,
             self._sticky_params,
@@ -275,12 +307,9 @@ def exact_profile(config: RodConfig) -> RodProfile:
     if points is None:
         raise ValueError(f"sigma / lambda = {ratio} is not a fraction k / m with 600 <= m <= 2400")
 
-    def potential(x):
-        return config.U0 / 2 * np.cos(2 * np.pi * x / config.wavelength)
-
     sticky = {"gamma": config.gamma, "eps": config.eps, "p": config.p} if config.gamma > 0 else {}
     c = config
-    return rod_profile(potential, c.sigma, c.mean_density, c.wavelength, c.kT, points=points, ring_length=c.length, **sticky)
+    return rod_profile(field_energy(config), c.sigma, c.mean_density, c.wavelength, c.kT, points=points, ring_length=c.length, **sticky)
 
 
 def deviations(measured: RodProfiles, exact: RodProfile, contact: bool = True) -> dict[str, float | None]:

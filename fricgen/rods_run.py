@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .rods import RodConfig, RodProfiles, RodSimulation, deviations, exact_profile, extrapolate_to_zero_dt
+from .rods import RodConfig, RodProfiles, RodSimulation, deviations, exact_profile, extrapolate_to_zero_dt, field_energy
 from .rods_theory import RodProfile, rod_profile
 
 REFINEMENT = 4  # --extrapolate: a second run at dt / 4
@@ -49,10 +49,8 @@ def study(config: RodConfig, duration: float, equilibration: float, out: Path, e
 
 
 def _baxter(config: RodConfig, exact: RodProfile) -> RodProfile:
-    def potential(x):
-        return config.U0 / 2 * np.cos(2 * np.pi * x / config.wavelength)
-
-    return rod_profile(potential, config.sigma, config.mean_density, config.wavelength, config.kT, gamma=config.gamma, points=exact.x.size)
+    c = config
+    return rod_profile(field_energy(c), c.sigma, c.mean_density, c.wavelength, c.kT, gamma=c.gamma, points=exact.x.size)
 
 
 def _write_csv(measured: RodProfiles, exact: RodProfile, path: Path) -> None:
@@ -77,7 +75,7 @@ def _plot(measured: RodProfiles, exact: RodProfile, baxter: RodProfile | None, c
 
     panels = 2 if config.gamma == 0 else 1
     figure, axes = plt.subplots(1, panels, figsize=(5 * panels, 3.6), squeeze=False)
-    title = f"N = {config.n}, L = {config.length:g}, $\\sigma$ = {config.sigma:g}, $U_0$ = {config.U0:g}, dt = {config.dt:g}"
+    title = f"N = {config.n}, L = {config.length:g}, $\\sigma$ = {config.sigma:g}, {config.field} $U_0$ = {config.U0:g}, dt = {config.dt:g}"
     axis = axes[0, 0]
     axis.plot(exact.x, exact.rho, "k-", lw=1, label="exact")
     if baxter is not None:

@@ -27,9 +27,21 @@ def test_bcd_sticky_reports_the_representation_error(tmp_path, capsys):
     assert 0 < summary["representation_error_max"] < 0.05 and "contact_ratio" not in summary
 
 
+def test_bcd_in_another_generated_field(tmp_path, capsys):
+    args = ["bcd", "--field", "ratchet", "--field-param", "a=1.5", "--n", "20", "--time", "0.2", "--dt", "1e-4", "--out", str(tmp_path)]
+    assert main([*args, "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["config"]["field"] == "ratchet" and summary["config"]["field_params"] == {"a": 1.5}
+    assert summary["l1_dev_over_rho"] < 0.1
+
+
 def test_bcd_refuses_bad_input(tmp_path, capsys):
     assert main(["bcd", "--n", "300", "--out", str(tmp_path / "x")]) == 2
     assert "close packing" in capsys.readouterr().err
     assert main(["bcd", "--time", "-1", "--out", str(tmp_path / "y")]) == 2
     assert "--time" in capsys.readouterr().err
-    assert not (tmp_path / "x").exists() and not (tmp_path / "y").exists()
+    assert main(["bcd", "--field", "sawtooth", "--out", str(tmp_path / "z")]) == 2
+    assert "no generated potential 'sawtooth'" in capsys.readouterr().err
+    assert main(["bcd", "--field-param", "b=1", "--out", str(tmp_path / "w")]) == 2
+    assert "no parameter(s) ['b']" in capsys.readouterr().err
+    assert not any((tmp_path / name).exists() for name in "xyzw")

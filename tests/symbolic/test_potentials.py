@@ -1,8 +1,9 @@
 """Conservative interactions: forces by differentiation, equal to the papers' forms."""
 
+import pytest
 import sympy as sp
 
-from derive.potentials import EXTERNAL_POTENTIALS, PAIR_POTENTIALS, x
+from derive.potentials import EXTERNAL_POTENTIALS, PAIR_POTENTIALS, Potential, check_external, x
 from derive.symbols import kT, r
 
 
@@ -31,3 +32,25 @@ def test_cosine_force():
     cosine = EXTERNAL_POTENTIALS["cosine"]
     u0, lam = cosine.symbols["U0"], cosine.symbols["lambda"]
     assert sp.simplify(cosine.force - sp.pi * u0 / lam * sp.sin(2 * sp.pi * x / lam)) == 0
+
+
+@pytest.mark.parametrize("name", EXTERNAL_POTENTIALS)
+def test_external_potentials_are_periodic_with_amplitude_and_period_parameters(name):
+    check_external(EXTERNAL_POTENTIALS[name])
+
+
+def test_a_tilted_or_unparametrised_field_is_refused():
+    cosine = EXTERNAL_POTENTIALS["cosine"]
+    tilted = Potential("tilted", cosine.energy - x / 7, x, cosine.defaults)
+    with pytest.raises(ValueError, match="not periodic"):
+        check_external(tilted)
+    fixed_period = Potential("fixed", cosine.energy.subs(cosine.symbols["lambda"], 1), x, {"U0": 6.0})
+    with pytest.raises(ValueError, match="lambda"):
+        check_external(fixed_period)
+
+
+def test_ratchet_with_a_0_is_the_cosine_field_shifted_by_a_quarter_wavelength():
+    ratchet, cosine = EXTERNAL_POTENTIALS["ratchet"], EXTERNAL_POTENTIALS["cosine"]
+    u0, lam = cosine.symbols["U0"], cosine.symbols["lambda"]
+    shifted = ratchet.energy.subs(ratchet.symbols["a"], 0).subs({ratchet.symbols["U0"]: u0, ratchet.symbols["lambda"]: lam})
+    assert sp.simplify(shifted - cosine.energy.subs(x, x - lam / 4)) == 0
