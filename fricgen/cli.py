@@ -201,7 +201,8 @@ def _bcd(args: argparse.Namespace) -> int:
 
     names = ("n", "length", "sigma", "U0", "field", "gamma", "p", "eps", "dt", "seed", "replicas", "bins")
     try:
-        config = RodConfig(**{name: getattr(args, name) for name in names}, field_params=dict(args.field_param))
+        pair = {"pair": args.pair, "pair_params": dict(args.pair_param), "pair_range": args.pair_range}
+        config = RodConfig(**{name: getattr(args, name) for name in names}, field_params=dict(args.field_param), **pair)
         if not (args.time > 0 and args.equilibrate >= 0):
             raise ValueError("--time must be positive and --equilibrate >= 0")
         summary = study(config, args.time, args.equilibrate, Path(args.out), extrapolate=args.extrapolate)
@@ -284,6 +285,9 @@ def parser() -> argparse.ArgumentParser:
     bcd.add_argument("--gamma", type=float, default=0.0, help="Baxter stickiness (default 0: hard rods)")
     bcd.add_argument("--p", type=float, default=3.0, help="exponent of the delta_eps representation (B-31)")
     bcd.add_argument("--eps", type=float, default=0.05, help="range of the delta_eps representation (B-31)")
+    bcd.add_argument("--pair", help="a generated pair potential V(r) between neighbours instead of the sticky contact (e.g. wca)")
+    bcd.add_argument("--pair-param", type=_assignment, action="append", default=[], metavar="NAME=VALUE", help="its parameters")
+    bcd.add_argument("--pair-range", type=float, default=0.0, help="gap beyond sigma where the pair potential ends (< sigma)")
     bcd.add_argument("--dt", type=float, default=DEFAULT_BCD_DT, help=f"time step (default {DEFAULT_BCD_DT:g}; bias O(sqrt(dt)))")
     bcd.add_argument("--time", type=float, default=1.25, help="sampled time per replica (default 1.25)")
     bcd.add_argument("--equilibrate", type=float, default=0.25, help="BCD time after the Monte Carlo start, before sampling (default 0.25)")

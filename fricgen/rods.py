@@ -16,7 +16,9 @@ dt = 1e-5, 2 % at 1e-6).
 
 Contact density (B-26): the pair density at gap g beyond the layer, g in [3 s, 3 s + fit_bins w],
 is fitted per bin by ln rho_2(x, g) = a + b g and extrapolated to g = 0; the exact contacts are
-not counted. Errors by jackknife over replicas.
+not counted. Errors by jackknife over replicas. This holds for hard rods only: within the range of a
+sticky or pair interaction the pair density is not exponential in g (deviations() compares it for
+hard rods only).
 """
 
 from __future__ import annotations
@@ -41,8 +43,10 @@ class RodConfig:
     """A BCD run: N rods of length sigma on a ring of length L in the external potential ``field``
     (generated/potentials/<field>.py; default (U0/2) cos(2 pi x / lambda), B-21) of amplitude U0 and
     period lambda = wavelength, its other parameters from ``field_params`` (else the module's
-    defaults), optional drive, optional sticky contact (B-31/32) of strength gamma (0: hard rods).
-    The rods start from ``start_sweeps`` Monte Carlo sweeps of the equilibrium ensemble (rods_mc)."""
+    defaults), optional drive, and between neighbours either the sticky contact (B-31/32) of
+    strength gamma (0: hard rods) or the generated pair potential ``pair`` (B-28) with
+    ``pair_params``, zero beyond r = sigma + pair_range (pair_range < sigma). The rods start from
+    ``start_sweeps`` Monte Carlo sweeps of the equilibrium ensemble (rods_mc)."""
 
     n: int = 50
     length: float = 100.0
@@ -57,6 +61,9 @@ class RodConfig:
     gamma: float = 0.0
     p: float = 3.0
     eps: float = 0.05
+    pair: str | None = None
+    pair_params: dict[str, float] = dataclasses.field(default_factory=dict)
+    pair_range: float = 0.0
     dt: float = 1e-4
     seed: int = 1
     replicas: int = 1
@@ -80,8 +87,17 @@ class RodConfig:
             raise ValueError("need gamma >= 0, p > 1 (continuous force, B-31) and eps < sigma")
         if {"U0", "lambda"} & set(self.field_params):
             raise ValueError("set the field's amplitude and period with U0 and wavelength, not field_params")
-        if not all(math.isfinite(v) for v in self.field_params.values()):
-            raise ValueError(f"field parameters must be finite numbers, got {self.field_params}")
+        if not all(math.isfinite(v) for v in (*self.field_params.values(), *self.pair_params.values())):
+            raise ValueError(f"field and pair parameters must be finite numbers, got {self.field_params}, {self.pair_params}")
+        if self.pair is None and (self.pair_params or self.pair_range):
+            raise ValueError("pair_params and pair_range need a pair potential (pair)")
+        if self.pair is not None and (self.gamma > 0 or not 0 < self.pair_range < self.sigma):
+            raise ValueError(f"a pair potential needs gamma = 0 (no sticky contact) and 0 < pair_range < sigma, got {self.pair_range}")
+
+    @property
+    def hard_rods(self) -> bool:
+        """No interaction beyond the hard core (no sticky contact, no pair potential)."""
+        return self.gamma == 0 and self.pair is None
 
     @property
     def diffusion(self) -> float:
@@ -92,23 +108,52 @@ class RodConfig:
         return self.n / self.length
 
 
+def _parameters(module: ModuleType, given: dict[str, float], fixed: dict[str, float]) -> np.ndarray:
+    """Parameter values of a generated module in the order of its PARAMETERS: ``fixed`` (where it has
+    them), else ``given``, else its defaults."""
+    unknown = sorted(set(given) - set(module.PARAMETERS))
+    if unknown:
+        raise ValueError(f"{module.NAME!r} has no parameter(s) {unknown}; its parameters are {module.PARAMETERS}")
+    values = dict(zip(module.PARAMETERS, module.DEFAULTS)) | given | fixed
+    return np.array([float(values[name]) for name in module.PARAMETERS])
+
+
+def _on_arrays(kernel: Callable[[float, np.ndarray], float], params: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
+    """A scalar generated kernel f(x, params) as a function of arrays of x (the exact theory's input)."""
+    return np.vectorize(lambda x: kernel(float(x), params), otypes=[float])
+
+
 def field_kernels(config: RodConfig) -> tuple[ModuleType, np.ndarray]:
-    """The generated external potential of a configuration and its parameter values in the order of
-    its PARAMETERS: U0 and lambda from U0 and wavelength, the others from field_params or its defaults."""
+    """The generated external potential of a configuration and its parameter values: U0 and lambda
+    from U0 and wavelength, the others from field_params or its defaults."""
     module = load_potential(config.field)
     if not hasattr(module, "force_field"):
         raise ValueError(f"{config.field!r} is a pair potential, not an external field U(x)")
-    unknown = sorted(set(config.field_params) - set(module.PARAMETERS))
-    if unknown:
-        raise ValueError(f"field {config.field!r} has no parameter(s) {unknown}; its parameters are {module.PARAMETERS}")
-    values = dict(zip(module.PARAMETERS, module.DEFAULTS)) | config.field_params | {"U0": config.U0, "lambda": config.wavelength}
-    return module, np.array([float(values[name]) for name in module.PARAMETERS])
+    return module, _parameters(module, config.field_params, {"U0": config.U0, "lambda": config.wavelength})
 
 
 def field_energy(config: RodConfig) -> Callable[[np.ndarray], np.ndarray]:
-    """U(x) of the configuration's field, for arrays of positions (the exact theory's input)."""
+    """U(x) of the configuration's field, for arrays of positions."""
     module, params = field_kernels(config)
-    return np.vectorize(lambda x: module.energy(float(x), params), otypes=[float])
+    return _on_arrays(module.energy, params)
+
+
+def pair_kernels(config: RodConfig) -> tuple[ModuleType, np.ndarray, float]:
+    """The interaction of neighbours beyond the hard core: generated module, parameter values and the
+    range a of the gap (V = 0 for r >= sigma + a). The sticky contact (B-32, a = eps; gamma = 0:
+    V = 0, hard rods) unless ``pair`` names another generated pair potential (B-28), with kT from the
+    config; that one is checked to vanish on [sigma + a, 2 sigma] (neighbours only interact)."""
+    c = config
+    if c.pair is None:
+        return load_potential("sticky"), np.array([c.gamma, c.p, c.eps, c.sigma, c.kT]), c.eps
+    module = load_potential(c.pair)
+    if hasattr(module, "force_field"):
+        raise ValueError(f"{c.pair!r} is an external field, not a pair potential V(r)")
+    params = _parameters(module, c.pair_params, {"kT": c.kT} if "kT" in module.PARAMETERS else {})
+    beyond = c.sigma + c.pair_range + (c.sigma - c.pair_range) * np.linspace(0.0, 1.0, 401)[1:] ** 2
+    if any(module.energy(r, params) != 0.0 or module.force(r, params) != 0.0 for r in beyond):
+        raise ValueError(f"pair potential {c.pair!r} is not zero beyond sigma + pair_range = {c.sigma + c.pair_range:g}: raise pair_range")
+    return module, params, c.pair_range
 
 
 def sticky_force_max(gamma: float, p: float, eps: float, kT: float = 1.0, samples: int = 4001) -> float:
@@ -125,10 +170,13 @@ def best_exponent(eps: float, gamma: float = 1.0) -> float:
 
 
 def stability_ratio(config: RodConfig) -> float:
-    """mu max|f_p| dt / eps of (B-33); the sticky force is resolved when this is << 1."""
-    if config.gamma == 0:
+    """mu max|f| dt / a of (B-33) for the neighbour force of range a (sticky: a = eps); the force is
+    resolved when this is << 1 (0 for hard rods)."""
+    if config.hard_rods:
         return 0.0
-    return config.mu * sticky_force_max(config.gamma, config.p, config.eps, config.kT) * config.dt / config.eps
+    module, params, reach = pair_kernels(config)
+    largest = max(abs(module.force(r, params)) for r in config.sigma + reach * np.linspace(0.0, 1.0, 4001))
+    return config.mu * largest * config.dt / reach
 
 
 @dataclass(frozen=True)
@@ -149,10 +197,10 @@ class RodSimulation:
     def __init__(self, config: RodConfig):
         self.config = config
         if stability_ratio(config) > 0.1:
-            warnings.warn(f"mu max|f| dt / eps = {stability_ratio(config):.2g} is not << 1 (B-33): reduce dt", stacklevel=2)
+            warnings.warn(f"mu max|f| dt / a = {stability_ratio(config):.2g} is not << 1 (B-33): reduce dt", stacklevel=2)
         self._field, self._field_params = field_kernels(config)  # energy and force kernels
-        self._sticky = load_potential("sticky")
-        self._sticky_params = np.array([config.gamma, config.p, config.eps, config.sigma, config.kT])
+        self._pair, self._pair_params, self._pair_range = pair_kernels(config)
+        self._pair_on = not config.hard_rods
         self.positions = self._initial()
         self.step, self.sweep = 0, 0
         self.acceptance = self.thermalize(config.start_sweeps)
@@ -176,10 +224,10 @@ class RodSimulation:
             c.kT,
             self._field.energy,
             self._field_params,
-            self._sticky.energy,
-            self._sticky_params,
-            c.sigma + c.eps,
-            c.gamma > 0,
+            self._pair.energy,
+            self._pair_params,
+            c.sigma + self._pair_range,
+            self._pair_on,
             sweeps,
             self.sweep,
             c.seed,
@@ -210,10 +258,10 @@ class RodSimulation:
             self._field.force_field,
             self._field_params,
             c.drive,
-            self._sticky.force,
-            self._sticky_params,
-            c.eps,
-            c.gamma > 0,
+            self._pair.force,
+            self._pair_params,
+            self._pair_range,
+            self._pair_on,
             c.wavelength,
             c.gap_width,
             *counts,
@@ -307,9 +355,12 @@ def exact_profile(config: RodConfig) -> RodProfile:
     if points is None:
         raise ValueError(f"sigma / lambda = {ratio} is not a fraction k / m with 600 <= m <= 2400")
 
-    sticky = {"gamma": config.gamma, "eps": config.eps, "p": config.p} if config.gamma > 0 else {}
     c = config
-    return rod_profile(field_energy(config), c.sigma, c.mean_density, c.wavelength, c.kT, points=points, ring_length=c.length, **sticky)
+    pair = {"gamma": c.gamma, "eps": c.eps, "p": c.p} if c.gamma > 0 else {}
+    if c.pair is not None:
+        module, params, reach = pair_kernels(c)
+        pair = {"pair": _on_arrays(module.energy, params), "pair_range": reach}
+    return rod_profile(field_energy(config), c.sigma, c.mean_density, c.wavelength, c.kT, points=points, ring_length=c.length, **pair)
 
 
 def deviations(measured: RodProfiles, exact: RodProfile, contact: bool = True) -> dict[str, float | None]:

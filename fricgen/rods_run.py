@@ -32,7 +32,7 @@ def study(config: RodConfig, duration: float, equilibration: float, out: Path, e
     seconds = time.perf_counter() - start
     exact = exact_profile(config)
     summary = {
-        **deviations(measured, exact, contact=config.gamma == 0),
+        **deviations(measured, exact, contact=config.hard_rods),
         "steps": measured.steps,
         "seconds": seconds,
         "extrapolated_to_zero_dt": extrapolate,
@@ -73,7 +73,7 @@ def _plot(measured: RodProfiles, exact: RodProfile, baxter: RodProfile | None, c
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    panels = 2 if config.gamma == 0 else 1
+    panels = 2 if config.hard_rods else 1
     figure, axes = plt.subplots(1, panels, figsize=(5 * panels, 3.6), squeeze=False)
     title = f"N = {config.n}, L = {config.length:g}, $\\sigma$ = {config.sigma:g}, {config.field} $U_0$ = {config.U0:g}, dt = {config.dt:g}"
     axis = axes[0, 0]

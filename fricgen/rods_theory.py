@@ -7,7 +7,9 @@ a rod at x is followed by the next at y > x with kernel
     G(x, y) = z W(y - x) exp[-beta P (y - x) - beta U(y)],   W(r) = exp[-beta V_int(r)] for r >= sigma,
 
 W = 1 for hard rods, W = 1 + gamma delta_eps(r - sigma) for the sticky representation (B-31) that
-the simulation uses, and W = 1 + gamma delta(r - sigma) for Baxter's sticky rods (B-29). Folded onto
+the simulation uses, W = exp[-beta V(r)] for any continuous pair potential V of range sigma + a,
+a < sigma (B-28; nearest neighbours only), and W = 1 + gamma delta(r - sigma) for Baxter's sticky
+rods (B-29). Folded onto
 one wavelength lambda, G is a circulant matrix times the Boltzmann factor; with z = 1 / Lambda (its
 Perron root) and left/right eigenvectors l, r:
 
@@ -119,26 +121,39 @@ def _hat_integrals(a: float) -> tuple[float, float, float, float]:
     return phi, 2 * np.sinh(a) / a**2 - 2 * phi / a, psi, -np.expm1(-a) / a**2 - 2 * psi / a
 
 
-def _sticky_weights(grid: Grid, beta_p: float, gamma: float, eps: float, p: float) -> tuple[np.ndarray, np.ndarray]:
-    """int hat_k(r) gamma delta_eps(r - sigma) exp(-beta P r) dr (B-31) and its first moment in r, for
-    the hat functions at r_k = sigma + k h (Gauss–Legendre on each piece of [sigma, sigma + eps])."""
-    h = grid.h
+@dataclass(frozen=True)
+class PairWeight:
+    """The pair weight beyond the hard core: W(sigma + g) = 1 + excess(g) for 0 <= g < reach
+    (excess(g) = exp[-beta V(sigma + g)] - 1, vectorised in g), plus Baxter's bond gamma delta(r - sigma)."""
+
+    excess: Callable[[np.ndarray], np.ndarray] | None = None
+    reach: float = 0.0
+    bond: float = 0.0
+
+
+HARD_CORE = PairWeight()
+
+
+def _excess_weights(grid: Grid, beta_p: float, weight: PairWeight) -> tuple[np.ndarray, np.ndarray]:
+    """int hat_k(r) [W(r) - 1] exp(-beta P r) dr and its first moment in r, for the hat functions at
+    r_k = sigma + k h (Gauss–Legendre on each piece of [sigma, sigma + reach])."""
+    h, reach = grid.h, weight.reach
     nodes, weights = np.polynomial.legendre.leggauss(12)
-    count = int(np.ceil(eps / h)) + 1
+    count = int(np.ceil(reach / h)) + 1
     row, moment = np.zeros(count), np.zeros(count)
     for k in range(count):
         for lo, hi in ((k - 1) * h, k * h), (k * h, (k + 1) * h):
-            lo, hi = max(lo, 0.0), min(hi, eps)
+            lo, hi = max(lo, 0.0), min(hi, reach)
             if hi <= lo:
                 continue
             g = 0.5 * (hi - lo) * nodes + 0.5 * (hi + lo)
-            integrand = (1 - np.abs(g / h - k)) * gamma * (p + 1) / eps ** (p + 1) * (eps - g) ** p * np.exp(-beta_p * (grid.sigma + g))
+            integrand = (1 - np.abs(g / h - k)) * weight.excess(g) * np.exp(-beta_p * (grid.sigma + g))
             row[k] += 0.5 * (hi - lo) * weights @ integrand
             moment[k] += 0.5 * (hi - lo) * weights @ (integrand * (grid.sigma + g))
     return row, moment
 
 
-def _kernel_rows(grid: Grid, beta_p: float, gamma: float, eps: float | None, p: float) -> tuple[np.ndarray, np.ndarray]:
+def _kernel_rows(grid: Grid, beta_p: float, weight: PairWeight) -> tuple[np.ndarray, np.ndarray]:
     """First row of the circulant kernel c(d) (d = (j - i) mod m) and of its first moment in r,
     summed over all images y - x = r0(d) + n lambda >= sigma: the integrand is interpolated linearly
     between grid points and integrated exactly against exp(-beta P r) W(r) (exact when uniform)."""
@@ -154,13 +169,13 @@ def _kernel_rows(grid: Grid, beta_p: float, gamma: float, eps: float | None, p: 
     row = decay * (np.where(edge, psi, phi) + phi * images)
     image_moment = phi * images * (r0 + grid.wavelength / (1 - q)) - h * dphi * images
     moment = decay * (np.where(edge, psi * r0 - h * dpsi, phi * r0 - h * dphi) + image_moment)
-    if gamma > 0 and eps is not None:  # W = 1 + gamma delta_eps (B-31), first image only
-        extra, extra_moment = _sticky_weights(grid, beta_p, gamma, eps, p)
+    if weight.excess is not None:  # W = 1 + excess, first image only (reach < sigma)
+        extra, extra_moment = _excess_weights(grid, beta_p, weight)
         where = (s + np.arange(extra.size)) % m
         row[where] += extra
         moment[where] += extra_moment
-    elif gamma > 0:  # Baxter: gamma delta(r - sigma) (B-29)
-        bond = gamma * np.exp(-beta_p * grid.sigma)
+    if weight.bond > 0:  # Baxter: gamma delta(r - sigma) (B-29)
+        bond = weight.bond * np.exp(-beta_p * grid.sigma)
         row[s % m] += bond
         moment[s % m] += bond * grid.sigma
     return row, moment
@@ -182,13 +197,13 @@ def _perron(apply, size: int, start: np.ndarray | None) -> tuple[float, np.ndarr
 class _Chain:
     """The folded transfer operator K = C diag(B) at given beta P; caches eigenvectors for warm starts."""
 
-    def __init__(self, grid: Grid, boltzmann: np.ndarray, gamma: float, eps: float | None, p: float):
-        self.grid, self.boltzmann, self.gamma, self.eps, self.p = grid, boltzmann, gamma, eps, p
+    def __init__(self, grid: Grid, boltzmann: np.ndarray, weight: PairWeight):
+        self.grid, self.boltzmann, self.weight = grid, boltzmann, weight
         self.left = self.right = None
 
     def solve(self, beta_p: float) -> float:
         """Perron root and eigenvectors at beta P; returns the mean spacing <y - x>."""
-        row, moment = _kernel_rows(self.grid, beta_p, self.gamma, self.eps, self.p)
+        row, moment = _kernel_rows(self.grid, beta_p, self.weight)
         b, m = self.boltzmann, row.size
         self.value, self.right = _perron(lambda v: _correlate(row, b * v.ravel()), m, self.right)
         _, self.left = _perron(lambda v: b * _correlate(row, v.ravel(), transpose=True), m, self.left)
@@ -196,10 +211,8 @@ class _Chain:
         return float(self.left @ _correlate(moment, b * self.right) / (self.value * (self.left @ self.right)))
 
 
-def _infinite_profile(
-    beta_u: np.ndarray, grid: Grid, mean_density: float, gamma: float, eps: float | None, p: float
-) -> tuple[RodProfile, _Chain]:
-    chain = _Chain(grid, np.exp(-(beta_u - beta_u.min())), gamma, eps, p)
+def _infinite_profile(beta_u: np.ndarray, grid: Grid, mean_density: float, weight: PairWeight) -> tuple[RodProfile, _Chain]:
+    chain = _Chain(grid, np.exp(-(beta_u - beta_u.min())), weight)
     tonks_pressure = mean_density / (1 - mean_density * grid.sigma)
 
     def excess(log_beta_p: float) -> float:
@@ -216,10 +229,29 @@ def _infinite_profile(
     rho *= mean_density / rho.mean()
     right = chain.right
     contact = rho * np.exp(-chain.beta_p * grid.sigma) * grid.shift(chain.boltzmann * right) / (chain.value * right)
-    if gamma > 0 and eps is not None:
-        contact *= 1 + gamma * (p + 1) / eps
+    if weight.excess is not None:
+        contact *= 1 + float(weight.excess(np.zeros(1))[0])  # W(sigma+)
     beta_mu = beta_u.min() - np.log(chain.value)
     return RodProfile(grid.x, rho, grid.window(rho, False), contact, float(beta_mu), chain.beta_p), chain
+
+
+def _pair_weight(
+    sigma: float, wavelength: float, kT: float, gamma: float, eps: float | None, p: float, pair: Callable | None, pair_range: float | None
+) -> PairWeight:
+    """The pair weight of rod_profile's arguments (see there); ValueError for inconsistent ones."""
+    if gamma < 0 or (eps is not None and not 0 < eps < min(sigma, wavelength)) or p <= 1:
+        raise ValueError("need gamma >= 0, 0 < eps < min(sigma, wavelength) and p > 1")
+    if pair is not None:
+        if gamma > 0:
+            raise ValueError("give a pair potential or sticky rods (gamma > 0), not both")
+        if pair_range is None or not 0 < pair_range < min(sigma, wavelength):
+            raise ValueError(f"the pair potential needs its range a (V = 0 beyond sigma + a) with 0 < a < sigma, got {pair_range}")
+        return PairWeight(lambda g: np.expm1(-np.asarray(pair(sigma + g), dtype=float) / kT), pair_range)
+    if gamma == 0:
+        return HARD_CORE
+    if eps is None:
+        return PairWeight(bond=gamma)
+    return PairWeight(lambda g: gamma * (p + 1) / eps ** (p + 1) * (eps - g) ** p, eps)
 
 
 def rod_profile(
@@ -233,26 +265,29 @@ def rod_profile(
     p: float = 3.0,
     points: int = 600,
     ring_length: float | None = None,
+    pair: Callable[[np.ndarray], np.ndarray] | None = None,
+    pair_range: float | None = None,
 ) -> RodProfile:
     """Exact profile of rods of length sigma at mean density rho_bar in U(x) (period lambda).
 
     ``gamma`` = 0: hard rods; ``gamma`` > 0 with ``eps``: the sticky representation (B-31/32) with
     exponent p and range eps (what BCD simulates); with ``eps=None``: Baxter's limit (B-29).
-    ``ring_length``: the O(1/L) correction for a ring of fixed N = rho_bar L. ``contact`` is the
-    pair density at gap 0+ (for sticky rods including W(sigma+); for Baxter without the bonded
-    delta weight). Raises ValueError beyond close packing (rho_bar sigma >= 1).
+    ``pair``: a continuous pair potential V(r) of neighbours on sigma <= r < sigma + pair_range
+    (zero beyond, pair_range < sigma), instead of the sticky contact. ``ring_length``: the O(1/L)
+    correction for a ring of fixed N = rho_bar L. ``contact`` is the pair density at gap 0+
+    (including W(sigma+); for Baxter without the bonded delta weight). Raises ValueError beyond
+    close packing (rho_bar sigma >= 1).
     """
     if not 0 < mean_density * sigma < 1:
         raise ValueError(f"need 0 < rho_bar sigma < 1 (close packing), got {mean_density * sigma}")
-    if gamma < 0 or (eps is not None and not 0 < eps < min(sigma, wavelength)) or p <= 1:
-        raise ValueError("need gamma >= 0, 0 < eps < min(sigma, wavelength) and p > 1")
+    weight = _pair_weight(sigma, wavelength, kT, gamma, eps, p, pair, pair_range)
     grid = Grid(wavelength, points, sigma)
     beta_u = np.asarray(potential(grid.x), dtype=float) / kT
-    profile, _ = _infinite_profile(beta_u, grid, mean_density, gamma, eps, p)
+    profile, _ = _infinite_profile(beta_u, grid, mean_density, weight)
     if ring_length is None:
         return profile
     step = 1e-3 * mean_density
-    below, above = (_infinite_profile(beta_u, grid, mean_density + sign * step, gamma, eps, p)[0] for sign in (-1, 1))
+    below, above = (_infinite_profile(beta_u, grid, mean_density + sign * step, weight)[0] for sign in (-1, 1))
     chi = 2 * step / (above.beta_mu - below.beta_mu)  # d rho_bar / d beta mu
     curvature = (above.rho - 2 * profile.rho + below.rho) / step**2
     rho = profile.rho - chi / (2 * ring_length) * curvature

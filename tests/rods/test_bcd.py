@@ -80,6 +80,19 @@ def test_any_generated_field_the_asymmetric_ratchet():
     assert other["chi2_per_dof"] > 10.0, other
 
 
+def test_continuous_pair_force_from_a_generated_pair_potential():
+    """Rods of length 0.5 with a WCA repulsion of diameter 0.55 (B-28; 6.5 kT at contact, zero beyond
+    r = 0.55 * 2^(1/6)) at rho_bar sigma = 0.6 match the exact theory with that pair potential; the
+    hard-rod profile is rejected."""
+    wca = {"pair": "wca", "pair_params": {"epsilon": 1.0, "sigma": 0.55}, "pair_range": 0.55 * 2 ** (1 / 6) - 0.5}
+    config = RodConfig(n=120, length=100.0, sigma=0.5, **wca, dt=1e-5, replicas=16, bins=50, seed=1)
+    measured = sample(config, 1.0)
+    figures = deviations(measured, exact_profile(config), contact=False)
+    assert figures["chi2_per_dof"] < 2.0, figures
+    hard = deviations(measured, exact_profile(dataclasses.replace(config, pair=None, pair_params={}, pair_range=0.0)), contact=False)
+    assert hard["chi2_per_dof"] > 10.0, hard
+
+
 def test_dense_profile_and_contact_density_after_extrapolation_in_sqrt_dt():
     """rho_bar sigma = 0.7: BCD's O(sqrt(dt)) bias is resolved at dt = 4e-5 and 1e-5 (the contact density
     is 12 % and 6 % low), and the extrapolation to dt = 0 agrees with the exact theory within error."""
@@ -139,5 +152,16 @@ def test_bad_configurations_are_refused():
         RodSimulation(RodConfig(field="sawtooth"))
     with pytest.raises(ValueError, match="U0 and wavelength"):
         RodConfig(field_params={"lambda": 2.0})
+    wca = {"pair": "wca", "pair_params": {"sigma": 0.55}}
+    with pytest.raises(ValueError, match="gamma = 0"):
+        RodConfig(**wca, pair_range=0.12, gamma=1.0)
+    with pytest.raises(ValueError, match="pair_range < sigma"):
+        RodConfig(**wca, pair_range=0.5)
+    with pytest.raises(ValueError, match="not zero beyond"):
+        RodSimulation(RodConfig(**wca, pair_range=0.1))  # WCA reaches 0.617
+    with pytest.raises(ValueError, match="external field"):
+        RodSimulation(RodConfig(pair="cosine", pair_range=0.1))
+    with pytest.raises(ValueError, match="need a pair potential"):
+        RodConfig(pair_range=0.1)
     with pytest.raises(ValueError, match="replicas >= 2"):
         RodSimulation(RodConfig(n=20, dt=1e-3)).run(20)

@@ -35,6 +35,13 @@ def test_bcd_in_another_generated_field(tmp_path, capsys):
     assert summary["l1_dev_over_rho"] < 0.1
 
 
+def test_bcd_with_a_generated_pair_potential(tmp_path, capsys):
+    wca = ["--pair", "wca", "--pair-param", "sigma=0.55", "--pair-range", "0.12"]
+    assert main(["bcd", *wca, "--n", "20", "--time", "0.1", "--dt", "2e-5", "--out", str(tmp_path), "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["config"]["pair"] == "wca" and "contact_ratio" not in summary and summary["l1_dev_over_rho"] < 0.1
+
+
 def test_bcd_refuses_bad_input(tmp_path, capsys):
     assert main(["bcd", "--n", "300", "--out", str(tmp_path / "x")]) == 2
     assert "close packing" in capsys.readouterr().err
@@ -44,4 +51,6 @@ def test_bcd_refuses_bad_input(tmp_path, capsys):
     assert "no generated potential 'sawtooth'" in capsys.readouterr().err
     assert main(["bcd", "--field-param", "b=1", "--out", str(tmp_path / "w")]) == 2
     assert "no parameter(s) ['b']" in capsys.readouterr().err
-    assert not any((tmp_path / name).exists() for name in "xyzw")
+    assert main(["bcd", "--pair", "wca", "--pair-range", "0.01", "--out", str(tmp_path / "v")]) == 2
+    assert "not zero beyond" in capsys.readouterr().err
+    assert not any((tmp_path / name).exists() for name in "xyzwv")

@@ -34,6 +34,42 @@ def test_uniform_sticky_rods_are_baxter(gamma):
     assert sticky_rods(1.0, 0.5, 0.0) == pytest.approx(tonks(1.0, 0.5))
 
 
+def soft_shell(r, sigma=0.5, reach=0.1, height=2.0):
+    """A continuous repulsive shell V = height (1 - (r - sigma) / reach)^2 on [sigma, sigma + reach)."""
+    return np.where(r < sigma + reach, height * (1 - (r - sigma) / reach) ** 2, 0.0)
+
+
+@pytest.mark.parametrize("density", [0.4, 1.2])
+def test_uniform_rods_with_a_pair_potential_follow_the_nearest_neighbour_equation_of_state(density):
+    """Takahashi's exact equation of state of a nearest-neighbour fluid: 1 / rho_bar = <r> with
+    weight exp(-beta P r - beta V(r)) on r >= sigma, solved for beta P by quadrature."""
+    from scipy.integrate import quad
+    from scipy.optimize import brentq
+
+    def mean_spacing(beta_p):
+        weight = [quad(lambda r, k=k: r**k * np.exp(-beta_p * r - soft_shell(r)), 0.5, 0.6, epsabs=0)[0] for k in (0, 1)]
+        tail = [np.exp(-0.6 * beta_p) / beta_p, np.exp(-0.6 * beta_p) * (0.6 / beta_p + 1 / beta_p**2)]
+        return (weight[1] + tail[1]) / (weight[0] + tail[0])
+
+    pressure = brentq(lambda b: mean_spacing(b) - 1 / density, 1e-3, 1e3, xtol=1e-14)
+    profile = rod_profile(flat, 0.5, density, pair=soft_shell, pair_range=0.1)
+    np.testing.assert_allclose(profile.rho, density, rtol=1e-10)
+    assert profile.beta_pressure == pytest.approx(pressure, rel=1e-6)  # V interpolated between grid points
+    assert abs(rod_profile(flat, 0.5, density).beta_pressure / pressure - 1) > 0.01  # the shell matters (2 % at 0.4)
+
+
+def test_the_sticky_representation_as_a_pair_potential_is_the_sticky_profile():
+    gamma, eps, p = 1.0, 0.05, 3.0
+
+    def sticky(r):
+        return -np.log1p(gamma * (p + 1) / eps ** (p + 1) * (eps - (r - 0.5)) ** p)
+
+    direct = rod_profile(cosine(), 0.5, 1.0, gamma=gamma, eps=eps, p=p)
+    as_pair = rod_profile(cosine(), 0.5, 1.0, pair=sticky, pair_range=eps)
+    np.testing.assert_allclose(as_pair.rho, direct.rho, rtol=1e-9)
+    np.testing.assert_allclose(as_pair.contact, direct.contact, rtol=1e-9)
+
+
 @pytest.mark.parametrize(("sigma", "density"), [(0.5, 0.4), (0.5, 1.4), (0.2, 2.0)])
 def test_hard_rods_solve_percus_functional_and_contact_formula(sigma, density):
     """The residual of (B-20b) and the deviation from (B-23) vanish as h^2 under grid refinement."""
@@ -90,3 +126,7 @@ def test_bad_input_is_refused():
         rod_profile(cosine(), 0.5004, 1.0)
     with pytest.raises(ValueError, match="eps"):
         rod_profile(cosine(), 0.5, 1.0, gamma=1.0, eps=0.6)
+    with pytest.raises(ValueError, match="not both"):
+        rod_profile(cosine(), 0.5, 1.0, gamma=1.0, pair=soft_shell, pair_range=0.1)
+    with pytest.raises(ValueError, match="0 < a < sigma"):
+        rod_profile(cosine(), 0.5, 1.0, pair=soft_shell, pair_range=0.5)
