@@ -1,5 +1,6 @@
-"""The Monte Carlo start (rods_mc) samples the exact equilibrium: profiles of dense hard rods and of sticky
-rods against rods_theory, with errors from independent replicas; a wrong model is rejected."""
+"""The Monte Carlo start (rods_mc) samples the exact equilibrium: profiles of dense hard rods, of sticky
+rods and of rods with a WCA repulsion in the ratchet field against rods_theory, with errors from
+independent replicas; a wrong model is rejected."""
 
 import numpy as np
 import pytest
@@ -35,6 +36,16 @@ def test_monte_carlo_samples_the_exact_profile(config):
     assert figures["chi2_per_dof"] < 2.0 and figures["l1_dev_over_rho"] < 0.02, figures
     other = RodConfig(n=config.n, length=100.0, sigma=0.5, gamma=1.0 - config.gamma, eps=0.05, dt=1e-5, bins=25)
     assert deviations(measured, exact_profile(other), contact=False)["chi2_per_dof"] > 10.0  # hard vs sticky told apart
+
+
+def test_monte_carlo_with_a_generated_field_and_pair_potential():
+    wca = {"pair": "wca", "pair_params": {"sigma": 0.55}, "pair_range": 0.55 * 2 ** (1 / 6) - 0.5}
+    config = RodConfig(n=120, length=100.0, sigma=0.5, U0=4.0, field="ratchet", **wca, dt=1e-5, replicas=16, bins=25, seed=3)
+    measured = mc_profile(config, 2000)
+    figures = deviations(measured, exact_profile(config), contact=False)
+    assert figures["chi2_per_dof"] < 2.0, figures
+    hard = RodConfig(n=120, length=100.0, sigma=0.5, U0=4.0, field="ratchet", bins=25)
+    assert deviations(measured, exact_profile(hard), contact=False)["chi2_per_dof"] > 10.0
 
 
 def test_start_is_ordered_reproducible_and_moves():
