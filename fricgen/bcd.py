@@ -1,7 +1,7 @@
 """Brownian cluster dynamics (BCD) of hard rods on a ring (Antonov et al. 2022, B-1..19).
 
 Overdamped rods of length sigma, dx_i/dt = mu F_i + sqrt(2D) xi_i (B-1, B-27), on a periodic line
-of length L. Per step dt:
+of length L, or on an open line for L = inf (the gap after the last rod is infinite). Per step dt:
 
 1. trial forces F_i = f(x_i) + F_drive + sum_j f_int(x_i, x_j) + sqrt(2D/dt)/mu N_i (B-11, B-28),
    f from the external potential's force_field kernel (one call per step for all rods),
@@ -216,7 +216,7 @@ def _sample(x, length, sigma, wavelength, gap_width, rho_counts, gap_counts):
         gap = _gap(x, i, length) - sigma
         if gap < -1e-9 * sigma:
             status = PASSED
-        k = 0 if gap <= contact else 1 + int(gap * per_gap)
+        k = 0 if gap <= contact else 1 + int(min(gap * per_gap, gap_bins))  # inf: after the last rod of an open line
         if k < gap_bins:
             gap_counts[b, k] += 1.0
     return status

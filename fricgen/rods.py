@@ -81,7 +81,9 @@ class RodConfig:
                 raise ValueError(f"{name} must be positive, got {getattr(self, name)}")
         if self.n * self.sigma >= self.length:
             raise ValueError(f"N sigma = {self.n * self.sigma} must be below the ring length L = {self.length} (close packing)")
-        if abs(self.length / self.wavelength - round(self.length / self.wavelength)) > 1e-9:
+        if self.open_line and self.start_sweeps > 0:
+            raise ValueError("an open line (length = inf) has no equilibrium to start from: set start_sweeps = 0, give positions")
+        if not self.open_line and abs(self.length / self.wavelength - round(self.length / self.wavelength)) > 1e-9:
             raise ValueError("the ring length must be a whole number of wavelengths")
         if self.gamma < 0 or self.p <= 1 or self.eps >= self.sigma:
             raise ValueError("need gamma >= 0, p > 1 (continuous force, B-31) and eps < sigma")
@@ -93,6 +95,11 @@ class RodConfig:
             raise ValueError("pair_params and pair_range need a pair potential (pair)")
         if self.pair is not None and (self.gamma > 0 or not 0 < self.pair_range < self.sigma):
             raise ValueError(f"a pair potential needs gamma = 0 (no sticky contact) and 0 < pair_range < sigma, got {self.pair_range}")
+
+    @property
+    def open_line(self) -> bool:
+        """length = inf: rods on an infinite line, no periodic images (rod N-1 has no right neighbour)."""
+        return math.isinf(self.length)
 
     @property
     def hard_rods(self) -> bool:
@@ -192,16 +199,21 @@ class RodProfiles:
 
 
 class RodSimulation:
-    """Independent replicas of one ring, started from equilibrium (Monte Carlo) and evolved by BCD."""
+    """Independent replicas of one ring, started from equilibrium (Monte Carlo) and evolved by BCD.
 
-    def __init__(self, config: RodConfig):
+    ``positions`` (N or replicas x N, ordered, no overlaps): the start instead of evenly spaced rods,
+    before the config's Monte Carlo sweeps; required on an open line."""
+
+    def __init__(self, config: RodConfig, positions: np.ndarray | None = None):
         self.config = config
         if stability_ratio(config) > 0.1:
             warnings.warn(f"mu max|f| dt / a = {stability_ratio(config):.2g} is not << 1 (B-33): reduce dt", stacklevel=2)
         self._field, self._field_params = field_kernels(config)  # energy and force kernels
         self._pair, self._pair_params, self._pair_range = pair_kernels(config)
         self._pair_on = not config.hard_rods
-        self.positions = self._initial()
+        if positions is None and config.open_line:
+            raise ValueError("an open line (length = inf) needs initial positions")
+        self.positions = self._initial() if positions is None else self._given(positions)
         self.step, self.sweep = 0, 0
         self.acceptance = self.thermalize(config.start_sweeps)
 
@@ -212,6 +224,15 @@ class RodSimulation:
         shift = normals(c.seed, 0, INITIAL, c.replicas) * 0.1 * (spacing - c.sigma)
         base = np.arange(c.n) * spacing
         return np.ascontiguousarray(base[None, :] + shift[:, None] % spacing)
+
+    def _given(self, positions: np.ndarray) -> np.ndarray:
+        """A copy of the given start for every replica; ValueError unless ordered without overlaps."""
+        c = self.config
+        x = np.array(np.broadcast_to(np.asarray(positions, dtype=float), (c.replicas, c.n)), order="C")
+        after = np.concatenate([x[:, 1:], x[:, :1] + c.length], axis=1)  # inf on an open line
+        if not (np.isfinite(x).all() and np.all(after - x >= c.sigma)):
+            raise ValueError(f"initial positions must be finite, ordered and at least sigma = {c.sigma} apart (around the ring)")
+        return x
 
     def thermalize(self, sweeps: int) -> float:
         """Metropolis sweeps (rods_mc) towards the exact equilibrium of the configuration's model, with no
@@ -279,6 +300,8 @@ class RodSimulation:
         20 time units per rod at U0 = 6), longer than a typical run, so time blocks of one ring are not
         independent; replicas started from independent equilibrium configurations are."""
         c = self.config
+        if c.open_line:
+            raise ValueError("profiles need a ring of finite length; on an open line use advance() and positions")
         if c.replicas < 2:
             raise ValueError("errors come from the scatter between independent replicas: need replicas >= 2 (8 or more for chi^2)")
         if steps < 1:
@@ -350,6 +373,8 @@ def extrapolate_to_zero_dt(coarse: RodProfiles, fine: RodProfiles, ratio: float)
 def exact_profile(config: RodConfig) -> RodProfile:
     """The exact equilibrium (rods_theory) of the model a RodConfig simulates, on a ring of its length;
     the grid (600 to 2400 points per wavelength) has sigma on a grid point."""
+    if config.open_line:
+        raise ValueError("the exact theory is for a ring of finite length, not an open line")
     ratio = config.sigma / config.wavelength
     points = next((m for m in range(600, 2401) if abs(ratio * m - round(ratio * m)) < 1e-9), None)
     if points is None:

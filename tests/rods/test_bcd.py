@@ -2,6 +2,7 @@
 against the exact theory (hard rods dilute and dense, sticky rods)."""
 
 import dataclasses
+import math
 
 import numpy as np
 import pytest
@@ -119,6 +120,31 @@ def test_constant_drive_gives_the_exact_drift_in_the_tilted_field():
     mean, error = drift.mean(), drift.std(ddof=1) / np.sqrt(drift.size)
     assert abs(mean - tilted_cosine_drift(4.0, 2.0)) < 4 * error, (mean, error)
     assert abs(mean - config.mu * config.drive) > 10 * error
+
+
+def test_open_line_hard_rods_are_sorted_free_brownian_motions():
+    """On an open line without a field, y_i = x_i - i sigma of hard rods are independent Brownian
+    motions relabelled in order (reflection = exchange of labels). From 3 rods packed in contact, at time T:
+    E[y_last] = -E[y_first] = sqrt(2 D T) E[max of 3 normals] = sqrt(2 D T) 3 / (2 sqrt(pi)), E[y_middle] = 0,
+    Var(mean y) = 2 D T / 3. Rods that passed through each other or stayed one cluster would give 0."""
+    config = RodConfig(n=3, length=math.inf, sigma=0.5, U0=0.0, dt=1e-5, replicas=3000, start_sweeps=0, seed=2)
+    packed = np.arange(config.n) * config.sigma
+    simulation = RodSimulation(config, positions=packed)
+    duration = 0.1
+    simulation.advance(round(duration / config.dt))
+    y = (simulation.positions - packed) / math.sqrt(2 * config.diffusion * duration)
+    error = y.std(0, ddof=1) / math.sqrt(config.replicas)
+    expected = np.array([-1.0, 0.0, 1.0]) * 3 / (2 * math.sqrt(math.pi))
+    assert np.all(np.abs(y.mean(0) - expected) < 4 * error), (y.mean(0), error)
+    assert y.mean(1).var() * config.n == pytest.approx(1.0, abs=4 * math.sqrt(2 / config.replicas))
+    with pytest.raises(ValueError, match="ring of finite length"):
+        simulation.run(10)
+    with pytest.raises(ValueError, match="needs initial positions"):
+        RodSimulation(config)
+    with pytest.raises(ValueError, match="no equilibrium"):
+        RodConfig(length=math.inf)
+    with pytest.raises(ValueError, match="at least sigma"):
+        RodSimulation(config, positions=[0.0, 0.4, 1.0])
 
 
 def test_dense_profile_and_contact_density_after_extrapolation_in_sqrt_dt():
