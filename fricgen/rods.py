@@ -202,7 +202,8 @@ class RodSimulation:
     """Independent replicas of one ring, started from equilibrium (Monte Carlo) and evolved by BCD.
 
     ``positions`` (N or replicas x N, ordered, no overlaps): the start instead of evenly spaced rods,
-    before the config's Monte Carlo sweeps; required on an open line."""
+    before the config's Monte Carlo sweeps; required on an open line (length = inf), which has no
+    Monte Carlo start and no profiles."""
 
     def __init__(self, config: RodConfig, positions: np.ndarray | None = None):
         self.config = config
