@@ -40,7 +40,8 @@ from .rods_theory import RodProfile, rod_profile
 
 @dataclass(frozen=True)
 class RodConfig:
-    """A BCD run: N rods of length sigma on a ring of length L in the external potential ``field``
+    """A BCD run: N rods of length sigma on a ring of length L (an open line for L = inf, started from
+    given positions with start_sweeps = 0) in the external potential ``field``
     (generated/potentials/<field>.py; default (U0/2) cos(2 pi x / lambda), B-21) of amplitude U0 and
     period lambda = wavelength, its other parameters from ``field_params`` (else the module's
     defaults), optional drive, and between neighbours either the sticky contact (B-31/32) of
@@ -207,8 +208,9 @@ class RodSimulation:
 
     def __init__(self, config: RodConfig, positions: np.ndarray | None = None):
         self.config = config
-        if stability_ratio(config) > 0.1:
-            warnings.warn(f"mu max|f| dt / a = {stability_ratio(config):.2g} is not << 1 (B-33): reduce dt", stacklevel=2)
+        ratio = stability_ratio(config)
+        if ratio > 0.1:
+            warnings.warn(f"mu max|f| dt / a = {ratio:.2g} is not << 1 (B-33): reduce dt", stacklevel=2)
         self._field, self._field_params = field_kernels(config)  # energy and force kernels
         self._pair, self._pair_params, self._pair_range = pair_kernels(config)
         self._pair_on = not config.hard_rods

@@ -9,9 +9,8 @@ a rod at x is followed by the next at y > x with kernel
 W = 1 for hard rods, W = 1 + gamma delta_eps(r - sigma) for the sticky representation (B-31) that
 the simulation uses, W = exp[-beta V(r)] for any continuous pair potential V of range sigma + a,
 a < sigma (B-28; nearest neighbours only), and W = 1 + gamma delta(r - sigma) for Baxter's sticky
-rods (B-29). Folded onto
-one wavelength lambda, G is a circulant matrix times the Boltzmann factor; with z = 1 / Lambda (its
-Perron root) and left/right eigenvectors l, r:
+rods (B-29). Folded onto one wavelength lambda, G is a circulant matrix times the Boltzmann factor;
+with z = 1 / Lambda (its Perron root) and left/right eigenvectors l, r:
 
     rho(x) ~ l(x) r(x),   1 / rho_bar = <y - x> = -d ln Lambda / d(beta P),   beta mu_ch = -ln Lambda,
 
