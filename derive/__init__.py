@@ -23,7 +23,7 @@ _EXPORTS = {
     "load_law": "laws",
     "make_law": "laws",
     "save_law": "laws",
-    "Calculus": "noise",
+    "Calculus": "calculus",
     "NoiseModel": "noise",
     "contact_mobility": "noise",
     "derive_noise": "noise",

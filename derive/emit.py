@@ -23,19 +23,24 @@ from pathlib import Path
 import sympy as sp
 from sympy.integrals.quadrature import gauss_legendre
 
-from .lawdata import CATALOGUE, GENERATOR_VERSION, read_law_data, source_hash
+from . import potentials
+from .errors import DeriveError
+from .lawdata import CATALOGUE, GENERATOR_VERSION, potential_source_hash, read_law_data, source_hash
+from .lawdata import POTENTIALS as POTENTIALS_SOURCE
 from .laws import FrictionLaw, load_law
 from .noise import NoiseModel, branches, derive_noise
 from .potentials import EXTERNAL_POTENTIALS, PAIR_POTENTIALS, Potential, check_external
-from .printer import KernelPrinter, fold_constants, stabilize
-from .symbols import kT, u
+from .printer import FORMULA_LIMIT, KernelPrinter, compact, cut, equation, fold_constants, short_formula, stabilize
+from .symbols import kT, s, u
 from .verification import Report, verify
 
 GENERATED = Path(__file__).resolve().parent.parent / "generated"
 SPECIAL_SOURCE = Path(__file__).with_name("kernel_sources") / "special.py"
 DECORATOR = '@numba.njit(cache=True, error_model="numpy")'
 #: Explicit signatures: the engines take these kernels as first-class functions (one compiled engine
-#: for every law), which needs each kernel compiled for exactly this signature.
+#: for every law), which needs each kernel compiled for exactly this signature. They are the kernel
+#: ABI of fricgen.kernels (SCALAR_KERNEL, FRICTION_KERNEL, NOISE_KERNEL, FIELD_KERNEL, CONTACT_KERNEL),
+#: spelled as strings since derive does not import Numba; tests/codegen/test_abi.py checks that they agree.
 SIGNATURES = {
     "r, params": "float64(float64, float64[::1])",
     "x, params": "float64(float64, float64[::1])",
@@ -56,8 +61,10 @@ INDENT = "    "
 QUADRATURE_ORDER = 10
 
 
-class GenerationError(RuntimeError):
+class GenerationError(DeriveError, RuntimeError):
     """A model that failed verification: nothing is emitted for its law."""
+
+    exit_status = 1
 
 
 @dataclass(frozen=True)
@@ -107,19 +114,33 @@ def _kernel(name: str, args: str, expr: sp.Expr, doc: str, parameters: list[sp.S
     expr = fold_constants(stabilize(expr))
     used = {x.name for x in expr.free_symbols}
     unpack = [f"{INDENT}{printer.doprint(p)} = params[{k}]" for k, p in enumerate(parameters) if p.name in used]
-    lines = [_decorator(args), f"def {name}({args}):", f"{INDENT}{_quote_doc(doc)}", *unpack, *guard, *_body(expr, printer)]
+    docstring = INDENT + _quote_doc(doc.replace("\n", "\n" + INDENT))
+    lines = [_decorator(args), f"def {name}({args}):", docstring, *unpack, *guard, *_body(expr, printer)]
     return "\n".join(lines) + "\n"
 
 
-def _zero_speed_guard(expr: sp.Expr) -> list[str]:
-    """``if u <= 0.0: return <limit u -> 0+>`` (0 if infinite) when evaluation at u = 0 is undefined."""
+def _zero_speed_limit(expr: sp.Expr) -> sp.Expr | None:
+    """The limit u -> 0+ (possibly infinite) when evaluation at u = 0 is undefined, else None."""
     pieces = branches(expr)
     first = pieces[0].expr if pieces else expr
     if first.subs(u, 0).is_finite:
+        return None
+    return sp.limit(first, u, 0, "+")
+
+
+def _zero_speed_guard(limit: sp.Expr | None) -> list[str]:
+    """``if u <= 0.0: return <limit u -> 0+>`` (0 if infinite); nothing for None (see _zero_speed_limit)."""
+    if limit is None:
         return []
-    limit = sp.limit(first, u, 0, "+")
     value = limit if limit.is_finite else sp.Integer(0)
     return [f"{INDENT}if u <= 0.0:", f"{INDENT * 2}return {KernelPrinter().doprint(fold_constants(value))}"]
+
+
+def _zero_speed_note(limit: sp.Expr | None) -> str:
+    """What the guard returns, for the docstring."""
+    if limit is None:
+        return ""
+    return f"; at u <= 0 its limit u -> 0+, {compact(limit)}" if limit.is_finite else "; 0 at u <= 0 (the limit u -> 0+ is infinite)"
 
 
 # --- law modules -------------------------------------------------------------------------------
@@ -190,33 +211,48 @@ def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, sou
         parts.append("\n" + _quadrature_constants())
     functions = []
     if law.weight is not None:
-        functions.append(_kernel("weight", "r, params", law.weight, f"w(r) = {law.weight_source} (-dU/dr for a potential).", params))
-    functions.append(_kernel("friction", "u, w, r, params", law.friction, f"f(u, w, r) = {law.source} (force).", params))
+        lhs = f"w(r) = -dU/dr of the potential {law.weight_source}" if law.weight_source in PAIR_POTENTIALS else "w(r)"
+        functions.append(_kernel("weight", "r, params", law.weight, equation(lhs, law.weight, "the weight in f"), params))
+    doc = f"f(u, w, r) = {law.source}, the magnitude of the friction force (it opposes the sliding)."
+    functions.append(_kernel("friction", "u, w, r, params", law.friction, doc, params))
     ratio = sp.piecewise_fold((law.friction / u).rewrite(sp.Piecewise))
-    guard = _zero_speed_guard(ratio)
-    functions.append(_kernel("friction_over_u", "u, w, r, params", ratio, "f/u, the factor of the tangential velocity.", params, guard))
+    at_zero = _zero_speed_limit(ratio)
+    doc = equation("f/u", ratio, f"the factor of the tangential velocity{_zero_speed_note(at_zero)}")
+    functions.append(_kernel("friction_over_u", "u, w, r, params", ratio, doc, params, _zero_speed_guard(at_zero)))
     if needs_quadrature:
         functions.append(_TAIL_KERNEL.format(decorator=DECORATOR, order=QUADRATURE_ORDER).lstrip("\n"))
     args = "u, w, r, mu, kT, params"
     for c, model in models.items():
+        a = compact(model.variance_scale)
         if model.closed_form:
-            guard = _zero_speed_guard(model.amplitude)
-            functions.append(_kernel(f"noise_amplitude_{c}", args, model.amplitude, f"D(u) for the {c} calculus.", params, guard))
+            at_zero = _zero_speed_limit(model.amplitude)
+            how = "D = f/u as nu = 0" if a == 0 else f"(F-22) in closed form with kT nu = {a}"
+            doc = equation("D(u)", model.amplitude, f"the {c} calculus: {how}{_zero_speed_note(at_zero)}")
+            functions.append(_kernel(f"noise_amplitude_{c}", args, model.amplitude, doc, params, _zero_speed_guard(at_zero)))
         else:
-            a = KernelPrinter().doprint(model.variance_scale)
+            doc = (
+                f"D(u) = (1/a) int_u^oo f(s) exp(-(s**2 - u**2)/(2*a)) ds (F-22), a = kT nu = {a} ({c} calculus),\n"
+                f"f(s) = {cut(str(compact(law.friction.subs(u, s))))}: Gauss-Legendre quadrature on geometric panels (_gaussian_tail)."
+            )
             functions.append(
                 f"{_decorator(args)}\ndef noise_amplitude_{c}({args}):\n"
-                f'{INDENT}"""D(u) for the {c} calculus: the integral (F-22) by quadrature."""\n'
-                f"{INDENT}return _gaussian_tail(u, {a}, w, r, params)\n"
+                f"{INDENT}{_quote_doc(doc.replace(chr(10), chr(10) + INDENT))}\n"
+                f"{INDENT}return _gaussian_tail(u, {KernelPrinter().doprint(model.variance_scale)}, w, r, params)\n"
             )
+        amplitude = short_formula(model.amplitude) if model.closed_form else None
+        value = f" = sqrt({amplitude})" if amplitude else ""
+        doc = f"sqrt(D(u)){value}, D = noise_amplitude_{c} ({c} calculus): the amplitude of the random contact force."
         functions.append(
             f"{_decorator(args)}\ndef noise_sqrt_{c}({args}):\n"
-            f'{INDENT}"""sqrt(D), the amplitude of the random contact force."""\n'
+            f"{INDENT}{_quote_doc(doc)}\n"
             f"{INDENT}return math.sqrt(noise_amplitude_{c}({args}))\n"
         )
+        over_u = short_formula(ratio, FORMULA_LIMIT // 2 - len(amplitude or ""))
+        value = f" = ({over_u}, sqrt({amplitude}))" if amplitude and over_u else ""
+        doc = f"(f/u, sqrt(D)){value} of one contact ({c} calculus): friction_over_u and noise_sqrt_{c} in one call."
         functions.append(
             f"{_decorator(args, CONTACT_SIGNATURE)}\ndef contact_{c}({args}):\n"
-            f'{INDENT}"""(f/u, sqrt(D)) of one contact for the {c} calculus."""\n'
+            f"{INDENT}{_quote_doc(doc)}\n"
             f"{INDENT}return friction_over_u(u, w, r, params), noise_sqrt_{c}({args})\n"
         )
     code = "".join("\n\n" + f for f in functions)
@@ -242,9 +278,15 @@ def potential_module(potential: Potential) -> str:
     symbols = {**potential.symbols, "kT": kT}
     params = [symbols[n] for n in names]
     defaults = [*potential.defaults.values(), *([1.0] if "kT" in names else [])]
-    digest = hashlib.sha256(f"{sp.srepr(potential.energy)}|{names}|{defaults}|{GENERATOR_VERSION}".encode()).hexdigest()
+    digest = potential_source_hash(potential.name, potentials.SOURCE)
     var = str(potential.variable)
-    header = _header([f"Source: potential '{potential.name}' (derive/potentials.py, {potential.reference})", f"Source hash: {digest}"])
+    header = _header(
+        [
+            f"Source: potential '{potential.name}' (derive/potentials.py, {potential.reference})",
+            f"Source hash: {digest} (of derive/potentials.py, checked by fricgen.kernels.load_potential)",
+            "Regenerate: fricgen generate",
+        ]
+    )
     doc = (
         f"Potential {potential.name} ({potential.reference}): energy U({var}, params) and force -dU/d{var};\n"
         "params in the order of PARAMETERS.\n"
@@ -254,8 +296,8 @@ def potential_module(potential: Potential) -> str:
         f"PARAMETERS = {tuple(names)!r}\nDEFAULTS = {tuple(float(v) for v in defaults)!r}\n"
     )
     functions = [
-        _kernel("energy", f"{var}, params", potential.energy, f"U({var}) = {potential.energy}", params),
-        _kernel("force", f"{var}, params", potential.force, f"-dU/d{var}", params),
+        _kernel("energy", f"{var}, params", potential.energy, equation(f"U({var})", potential.energy, "the potential energy"), params),
+        _kernel("force", f"{var}, params", potential.force, equation(f"F({var}) = -dU/d{var}", potential.force, "the force"), params),
     ]
     if potential.name in EXTERNAL_POTENTIALS:
         functions.append(_FIELD_KERNEL.format(decorator=_decorator("xs, params, out")).lstrip("\n"))
@@ -305,6 +347,11 @@ def generate(names: list[str] | None = None, catalogue: Path = CATALOGUE, output
     in the catalogue are removed.
     """
     catalogue, output = Path(catalogue), Path(output)
+    if POTENTIALS_SOURCE.read_bytes() != potentials.SOURCE:
+        raise GenerationError(
+            f"{POTENTIALS_SOURCE} changed since derive.potentials was imported: the potentials and the weights of laws would be"
+            " emitted from the old version; run `fricgen generate` in a new Python process"
+        )
     available = sorted(p.stem for p in catalogue.glob("*.toml"))
     unknown = sorted(set(names or ()) - set(available))
     if unknown:
@@ -330,7 +377,7 @@ def generate(names: list[str] | None = None, catalogue: Path = CATALOGUE, output
         law = load_law(path)
         models, law_reports = verified_models(law)
         reports += law_reports
-        digest = source_hash(read_law_data(path))
+        digest = source_hash(read_law_data(path), potentials.SOURCE)
         text = law_module(law, models, digest, f"derive/catalogue/{name}.toml")
         written.append(write_if_changed(output / "laws" / f"{name}.py", text))
     if names is None:

@@ -34,7 +34,8 @@ from sympy.core.function import AppliedUndef
 from sympy.parsing.sympy_parser import parse_expr
 
 from . import potentials
-from .lawdata import CALCULI, CATALOGUE, LawFileError, read_law_data
+from .calculus import CALCULI
+from .lawdata import CATALOGUE, LawFileError, read_law_data
 from .symbols import RESERVED, r, u, w
 
 

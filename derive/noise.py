@@ -16,30 +16,20 @@ Closed forms: f is split at its branch points (Min, Max, Piecewise) into pieces 
 u; on each piece a polynomial in u integrates exactly with the Gaussian moments
 I_n(x) = int_x^oo s^n exp(-s^2/2a) ds (I_0 with erfc, I_1 elementary, then a recurrence).
 Other pieces keep the exact integral (F-22), evaluated numerically downstream.
+
+The physics: docs/physics.md#the-noise-amplitude-d.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from enum import StrEnum
 
 import mpmath
 import sympy as sp
 
+from .calculus import Calculus
 from .laws import FrictionLaw, LawError
 from .symbols import kT, mu, r, s, u, w
-
-
-class Calculus(StrEnum):
-    """Stochastic calculus with its evaluation point theta."""
-
-    ITO = "ito"
-    STRATONOVICH = "stratonovich"
-    HK = "hk"
-
-    @property
-    def theta(self) -> sp.Rational:
-        return {"ito": sp.Integer(0), "stratonovich": sp.Rational(1, 2), "hk": sp.Integer(1)}[self.value]
 
 
 def contact_mobility(m_i, m_k, radius_i, radius_k, inertia_i=None, inertia_k=None) -> sp.Expr:
@@ -79,7 +69,7 @@ class NoiseModel:
     @property
     def nu(self) -> sp.Expr:
         """nu = (1 - theta) mu (F-21)."""
-        return (1 - self.calculus.theta) * self.mobility
+        return (1 - sp.Rational(self.calculus.theta)) * self.mobility
 
     @property
     def variance_scale(self) -> sp.Expr:

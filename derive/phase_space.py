@@ -16,6 +16,8 @@ modulo n . n = 1. The lemma proven here, for arbitrary D(u) and f(u),
     u (J^f + J^fn) / P_B = -C^T u_perp [f - u D + nu kT dD/du],   nu = (1 - theta) mu,
 
 leaves each law with the scalar ODE (F-20).
+
+The physics: docs/physics.md#zero-probability-current-proved-symbolically.
 """
 
 from __future__ import annotations
@@ -25,6 +27,7 @@ from functools import cache
 
 import sympy as sp
 
+from .calculus import Calculus
 from .symbols import kT
 
 
@@ -163,7 +166,7 @@ def random_force_matrix(space: PairPhaseSpace) -> sp.Matrix:
     )
 
 
-CALCULI_THETA = {"ito": sp.Integer(0), "stratonovich": sp.Rational(1, 2), "hk": sp.Integer(1)}
+CALCULI_THETA = {c.value: sp.Rational(c.theta) for c in Calculus}
 
 # Placeholders of the lemma: D(u), dD/du, f(u) and u itself.
 D_SYM, DD_SYM, F_SYM, U_SYM = sp.symbols("D Dprime f u_c", real=True)

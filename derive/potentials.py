@@ -17,10 +17,14 @@ parameters (the BCD engine folds its profiles onto one period): see check_extern
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import sympy as sp
 
 from .symbols import kT, r
+
+#: The text this module was imported from: generated potentials carry its hash (derive.lawdata.potential_source_hash).
+SOURCE = Path(__file__).read_bytes()
 
 x = sp.Symbol("x", real=True)
 

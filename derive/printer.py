@@ -1,9 +1,10 @@
-"""SymPy printing for Numba kernels: numerically stable rewrites and a Python printer subclass.
+"""SymPy printing for Numba kernels: numerically stable rewrites, a Python printer subclass, and the
+formulas in the kernels' docstrings (:func:`equation`).
 
 Rewrites (exact identities, applied before printing):
 
 - exp(A) erfc(B) -> erfcx(B) exp(A - B^2) with erfcx(x) = exp(x^2) erfc(x): the product
-  overflows/underflows for large arguments, erfcx ~ 1/(x sqrt(pi)) does not (PHYSICS.md);
+  overflows/underflows for large arguments, erfcx ~ 1/(x sqrt(pi)) does not (docs/physics.md#the-noise-amplitude-d);
 - c exp(x) - c -> c expm1(x): no cancellation for x -> 0 (branch thresholds of Min laws);
 - products of numeric constants -> one float literal (no runtime sqrt(pi) etc.).
 """
@@ -93,3 +94,38 @@ class KernelPrinter(PythonCodePrinter):
 
     def _print_Float(self, expr):
         return repr(float(expr))
+
+
+# --- formulas in docstrings ----------------------------------------------------------------------
+
+#: Formulas in kernel docstrings longer than this are cut with "..." (a long Piecewise: per branch).
+FORMULA_LIMIT = 200
+
+
+def cut(text: str) -> str:
+    """``text`` cut with "..." at FORMULA_LIMIT characters."""
+    return text if len(text) <= FORMULA_LIMIT else text[: FORMULA_LIMIT - 3] + "..."
+
+
+def compact(expr: sp.Expr) -> sp.Expr:
+    """``expr`` for reading: sqrt(kT)*sqrt(mu) -> sqrt(kT*mu) (exact, all symbols being positive)."""
+    plain = {x: sp.Symbol(x.name) for x in expr.free_symbols}
+    return sp.powsimp(expr.xreplace(plain), combine="base", force=True, deep=True)
+
+
+def equation(lhs: str, expr: sp.Expr, what: str, indent: str = "    ") -> str:
+    """A docstring ``lhs = expr, what.``: ``str`` of the SymPy expression, or for a Piecewise longer than
+    FORMULA_LIMIT ``lhs, what:`` and one line per branch (``value  if condition`` ... ``value  otherwise``).
+    Longer expressions (values of branches) are cut with "..." at FORMULA_LIMIT."""
+    expr = compact(expr)
+    text = str(expr)
+    if len(text) <= FORMULA_LIMIT or not isinstance(expr, sp.Piecewise):
+        return f"{lhs} = {cut(text)}, {what}."
+    lines = [f"{cut(str(value))}  " + ("otherwise" if condition == sp.true else f"if {condition}") for value, condition in expr.args]
+    return f"{lhs}, {what}:\n" + "\n".join(indent + line for line in lines)
+
+
+def short_formula(expr: sp.Expr, limit: int = FORMULA_LIMIT // 2) -> str | None:
+    """The one-line formula of ``expr`` if it is at most ``limit`` characters long, else None."""
+    text = str(compact(expr))
+    return text if len(text) <= limit else None

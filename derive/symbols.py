@@ -1,6 +1,6 @@
 """Canonical SymPy symbols shared by the symbolic layer.
 
-Conventions (see PHYSICS.md): ``u`` is the magnitude of the relative tangential contact
+Conventions (docs/physics.md#units-and-symbols): ``u`` is the magnitude of the relative tangential contact
 velocity (u >= 0), ``r`` the centre distance, ``w`` the value of a law's distance weight
 w(r), ``kT`` the thermal energy and ``mu`` the contact mobility
 mu = 1/m_i + 1/m_k + R_i^2/I_i + R_k^2/I_k (units 1/mass).

@@ -1,9 +1,22 @@
-"""The one loader of generated kernels: law kernels by name, refused when stale.
+"""The kernel layer: the kernel ABI, and the one loader of generated kernels, refused when stale.
 
-A law's kernels carry the hash of the law file they were generated from; if the law file was
-edited since, loading fails with the command that regenerates them. After a regeneration in the
-same process (a notebook), the module is reloaded, so the new kernels take effect at once.
-SymPy is never imported here.
+The ABI is the Numba function type of each kind of generated kernel (derive.emit compiles every
+kernel for exactly its type, tests/codegen/test_abi.py checks it); the engines take kernels as
+first-class functions of these types, so one compiled engine serves every law and potential:
+
+- ``SCALAR_KERNEL``: ``weight(r, params)``, a potential's ``energy(x, params)`` and ``force(x, params)``;
+- ``FRICTION_KERNEL``: ``friction(u, w, r, params)`` and ``friction_over_u(u, w, r, params)``;
+- ``NOISE_KERNEL``: ``noise_amplitude_<c>(u, w, r, mu, kT, params)`` and ``noise_sqrt_<c>(...)``;
+- ``CONTACT_KERNEL``: ``contact_<c>(u, w, r, mu, kT, params)`` -> ``(f/u, sqrt(D))``;
+- ``FIELD_KERNEL``: ``force_field(xs, params, out)`` of an external potential (out[i] = force(xs[i])).
+
+``params`` is a contiguous float64 array. :func:`no_weight` is the weight of laws without one.
+
+Generated kernels carry the hash of their source: a law's kernels that of its law file (and of
+derive/potentials.py when its weight is a potential), a potential's that of derive/potentials.py.
+If the source was edited since, loading fails with the command that regenerates them. After a
+regeneration in the same process (a notebook), the module is reloaded, so the new kernels take
+effect at once. SymPy is never imported here.
 """
 
 from __future__ import annotations
@@ -14,13 +27,38 @@ from dataclasses import dataclass
 from pathlib import Path
 from types import ModuleType
 
+import numba
 import numpy as np
+from numba import types
 
-from derive.lawdata import CATALOGUE, LawFileError, read_law_data, source_hash
+from derive.lawdata import CATALOGUE, LawFileError, potential_source_hash, read_law_data, source_hash, weight_potential
+
+from .errors import ConfigError, KernelError
+
+# --- the kernel ABI --------------------------------------------------------------------------------
+
+_F = types.float64
+_V = types.Array(_F, 1, "C")  # float64[::1]: params, and the positions and forces of force_field
+
+#: weight(r, params), energy(x, params), force(x, params) -> float64.
+SCALAR_KERNEL = types.FunctionType(_F(_F, _V))
+#: friction(u, w, r, params), friction_over_u(u, w, r, params) -> float64.
+FRICTION_KERNEL = types.FunctionType(_F(_F, _F, _F, _V))
+#: noise_amplitude_<c>(u, w, r, mu, kT, params) -> D, noise_sqrt_<c>(...) -> sqrt(D).
+NOISE_KERNEL = types.FunctionType(_F(_F, _F, _F, _F, _F, _V))
+#: contact_<c>(u, w, r, mu, kT, params) -> (f/u, sqrt(D)).
+CONTACT_KERNEL = types.FunctionType(types.UniTuple(_F, 2)(_F, _F, _F, _F, _F, _V))
+#: force_field(xs, params, out): out[i] = force(xs[i], params).
+FIELD_KERNEL = types.FunctionType(types.void(_V, _V, _V))
 
 
-class KernelError(LookupError):
-    """Kernels missing, stale, or asked for a calculus the law does not have."""
+@numba.njit(SCALAR_KERNEL.signature, cache=True)
+def no_weight(r, params):
+    """w = 1 for laws without a distance weight (friction acts within the potential's range)."""
+    return 1.0
+
+
+# --- law kernels -----------------------------------------------------------------------------------
 
 
 @dataclass(frozen=True)
@@ -49,13 +87,13 @@ class LawKernels:
 
     def parameters(self, **overrides: float) -> np.ndarray:
         """Parameter values (float64 array) from the defaults and named overrides."""
-        unknown = sorted(set(overrides) - set(self.parameter_names))
-        if unknown:
-            raise KernelError(f"law {self.name} has no parameter(s) {unknown}; it has {list(self.parameter_names)}")
         values = dict(zip(self.parameter_names, self.module.DEFAULTS))
         for key, value in overrides.items():
+            if key not in values:
+                names = list(self.parameter_names)
+                raise ConfigError(f"law.parameters.{key}", f"law {self.name} has no parameter {key!r}", f"it has {names}")
             if not (np.isfinite(value) and value > 0):
-                raise KernelError(f"law {self.name}: parameter {key} must be finite and positive, got {value}")
+                raise ConfigError(f"law.parameters.{key}", f"must be positive and finite, got {value}", "give a positive value")
             values[key] = float(value)
         return np.array([values[n] for n in self.parameter_names], dtype=np.float64)
 
@@ -98,7 +136,8 @@ def load_law_kernels(name: str, catalogue: Path = CATALOGUE) -> LawKernels:
         available = sorted(p.stem for p in Path(catalogue).glob("*.toml"))
         raise KernelError(f"no law {name!r} in the catalogue {catalogue}; it has {available}")
     try:
-        digest = source_hash(read_law_data(path))
+        data = read_law_data(path)
+        digest = source_hash(data)
     except LawFileError as error:
         raise KernelError(str(error)) from error
     module_name = f"generated.laws.{name}"
@@ -109,17 +148,43 @@ def load_law_kernels(name: str, catalogue: Path = CATALOGUE) -> LawKernels:
     if module.SOURCE_HASH != digest:
         module = importlib.reload(sys.modules[module_name])  # regenerated since it was imported?
     if module.SOURCE_HASH != digest:
-        raise KernelError(f"the kernels of law {name} are stale: {path} changed after they were generated; run `fricgen generate {name}`")
+        changed = str(path) if weight_potential(data) is None else f"{path} or derive/potentials.py (its weight {data['weight']})"
+        raise KernelError(
+            f"the kernels of law {name} are stale: {changed} changed after they were generated; run `fricgen generate {name}`"
+        )
     return LawKernels(name, module)
 
 
 def load_potential(name: str) -> ModuleType:
     """Generated potential module (energy(x, params), force(x, params), PARAMETERS, DEFAULTS; external
-    potentials also force_field(xs, params, out))."""
+    potentials also force_field(xs, params, out)); raises KernelError if missing or stale."""
+    module_name = f"generated.potentials.{name}"
     try:
-        return importlib.import_module(f"generated.potentials.{name}")
+        module = importlib.import_module(module_name)
     except ModuleNotFoundError as error:
         import generated.potentials
 
         there = sorted(p.stem for p in Path(generated.potentials.__file__).parent.glob("*.py") if p.stem != "__init__")
         raise KernelError(f"no generated potential {name!r} (there are {there}): a new one needs `fricgen generate`") from error
+    digest = potential_source_hash(name)
+    if getattr(module, "SOURCE_HASH", None) != digest:
+        module = importlib.reload(sys.modules[module_name])  # regenerated since it was imported?
+    if getattr(module, "SOURCE_HASH", None) != digest:
+        raise KernelError(
+            f"the kernels of potential {name} are stale: derive/potentials.py changed after they were generated; run `fricgen generate`"
+        )
+    return module
+
+
+__all__ = [
+    "CONTACT_KERNEL",
+    "FIELD_KERNEL",
+    "FRICTION_KERNEL",
+    "NOISE_KERNEL",
+    "SCALAR_KERNEL",
+    "KernelError",
+    "LawKernels",
+    "load_law_kernels",
+    "load_potential",
+    "no_weight",
+]

@@ -1,13 +1,18 @@
 """generated/ is fresh, regeneration is idempotent, stale kernels are refused."""
 
 import shutil
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
 
+import derive.emit
+from derive import lawdata
 from derive.emit import GENERATED, GenerationError, generate
-from derive.lawdata import CATALOGUE
-from fricgen.kernels import KernelError, load_law_kernels
+from derive.lawdata import CATALOGUE, POTENTIALS
+from fricgen.errors import ConfigError, FricgenError
+from fricgen.kernels import KernelError, load_law_kernels, load_potential
 
 
 def _tree(folder: Path) -> dict[str, bytes]:
@@ -64,12 +69,85 @@ def test_stale_kernels_are_refused_with_the_command(tmp_path):
     assert load_law_kernels("coulomb", catalogue=catalogue).name == "coulomb"
 
 
+@pytest.fixture
+def edited_potentials(tmp_path, monkeypatch):
+    """derive/potentials.py with WCA's 4 epsilon made 8 epsilon, in place of the real one for the loader."""
+    text = POTENTIALS.read_text()
+    assert text.count("4 * eps * (") == 1
+    edited = tmp_path / "potentials.py"
+    edited.write_text(text.replace("4 * eps * (", "8 * eps * ("))
+    monkeypatch.setattr(lawdata, "POTENTIALS", edited)
+    return edited
+
+
+def test_stale_potentials_are_refused_with_the_command(edited_potentials):
+    with pytest.raises(KernelError, match="kernels of potential wca are stale: derive/potentials.py changed.*`fricgen generate`"):
+        load_potential("wca")
+    with pytest.raises(KernelError, match="kernels of potential cosine are stale"):
+        load_potential("cosine")
+
+
+def test_laws_weighted_by_an_edited_potential_are_stale(edited_potentials):
+    """Every catalogue law has the WCA weight w = -dU/dr: its kernels hold the old potential."""
+    with pytest.raises(KernelError, match="law coulomb are stale: .*derive/potentials.py \\(its weight wca\\).*fricgen generate coulomb"):
+        load_law_kernels("coulomb")
+
+
+def test_unedited_potentials_load(tmp_path, monkeypatch):
+    """A byte-for-byte copy loads, and so does one with CRLF line ends (a Windows checkout)."""
+    copy = tmp_path / "potentials.py"
+    shutil.copyfile(POTENTIALS, copy)
+    monkeypatch.setattr(lawdata, "POTENTIALS", copy)
+    assert load_potential("wca").NAME == "wca"
+    assert load_law_kernels("coulomb").name == "coulomb"
+    copy.write_bytes(POTENTIALS.read_bytes().replace(b"\n", b"\r\n"))
+    assert load_potential("sticky").NAME == "sticky"
+
+
+def test_generation_refuses_potentials_edited_after_import(edited_potentials, monkeypatch, tmp_path):
+    """The imported potentials would be emitted with the hash of the edited file: refused."""
+    monkeypatch.setattr(derive.emit, "POTENTIALS_SOURCE", edited_potentials)
+    with pytest.raises(GenerationError, match="changed since derive.potentials was imported"):
+        generate(["linear"], output=tmp_path / "out")
+    assert not (tmp_path / "out" / "potentials").exists()
+
+
+def test_potential_staleness_needs_no_sympy():
+    code = "import sys; from fricgen.kernels import load_potential; load_potential('wca'); print('sympy' in sys.modules)"
+    assert subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.strip() == "False"
+
+
+def test_kernel_error_is_a_fricgen_error():
+    assert issubclass(KernelError, FricgenError) and issubclass(KernelError, LookupError)
+    with pytest.raises(FricgenError, match="no generated potential 'nope'"):
+        load_potential("nope")
+
+
+def test_kernel_docstrings_show_their_formulas():
+    linear = load_law_kernels("linear")
+    assert linear.noise_amplitude("ito").__doc__.startswith("D(u) = gamma_f*w, the ito calculus: (F-22) in closed form with kT nu = kT*mu")
+    assert linear.noise_amplitude("hk").__doc__.startswith("D(u) = gamma_f*w, the hk calculus: D = f/u as nu = 0")
+    assert linear.friction.__doc__.startswith("f(u, w, r) = w*gamma_f*u")
+    assert linear.noise_sqrt("ito").__doc__.startswith("sqrt(D(u)) = sqrt(gamma_f*w)")
+    assert linear.contact("ito").__doc__.startswith("(f/u, sqrt(D)) = (gamma_f*w, sqrt(gamma_f*w))")
+    assert linear.weight.__doc__.startswith("w(r) = -dU/dr of the potential wca = Piecewise((")
+    coulomb = load_law_kernels("coulomb")
+    assert coulomb.friction_over_u.__doc__.startswith("f/u = kappa_f*w/u, the factor of the tangential velocity; 0 at u <= 0")
+    smooth = load_law_kernels("smooth_coulomb").noise_amplitude("stratonovich").__doc__
+    assert "int_u^oo f(s) exp(-(s**2 - u**2)/(2*a)) ds (F-22), a = kT nu = kT*mu/2" in smooth
+    assert "f(s) = kappa_f*w*tanh(s/u0)" in smooth and "Gauss-Legendre quadrature on geometric panels" in smooth
+    branched = load_law_kernels("coulomb_newton").noise_amplitude("ito").__doc__
+    assert branched.splitlines()[-1].strip().endswith("otherwise") and "if u < kappa_f*w/gamma_f" in branched
+    wca = load_potential("wca")
+    assert wca.force.__doc__.startswith("F(r) = -dU/dr = Piecewise((-4*epsilon*(6*sigma**6/r**7 - 12*sigma**12/r**13)")
+
+
 def test_loader_errors(kernels):
     with pytest.raises(KernelError, match="no law 'nope'"):
         load_law_kernels("nope")
     with pytest.raises(KernelError, match="no kernels for the 'hk' calculus"):
         kernels["coulomb"].noise_amplitude("hk")
-    with pytest.raises(KernelError, match="no parameter"):
+    with pytest.raises(ConfigError, match="law.parameters.gamma_f: law coulomb has no parameter"):
         kernels["coulomb"].parameters(gamma_f=1.0)
-    with pytest.raises(KernelError, match="positive"):
+    with pytest.raises(ConfigError, match="law.parameters.kappa_f: must be positive"):
         kernels["coulomb"].parameters(kappa_f=-1.0)
