@@ -17,7 +17,7 @@ import time
 import numba
 import numpy as np
 
-from fricgen.rods import RodConfig, RodSimulation, exact_profile
+from fricgen.rods import RodSimulation, exact_profile, rod_config
 
 PEER_CURRENT, PEER_OLD, TARGET = 0.28, 0.07, 0.028
 
@@ -26,7 +26,7 @@ def cost_per_particle_step() -> None:
     threads = numba.get_num_threads()
     numba.set_num_threads(1)
     for n in (50, 500, 5000):
-        simulation = RodSimulation(RodConfig(n=n, length=2.0 * n, sigma=0.5, dt=1e-5, replicas=1))
+        simulation = RodSimulation(rod_config(n=n, length=2.0 * n, sigma=0.5, dt=1e-5, replicas=1))
         simulation.equilibrate(1.0, dt=1e-4)
         steps = max(2000, 4_000_000 // n)
         costs = []
@@ -45,18 +45,21 @@ def cost_per_particle_step() -> None:
 def time_to_one_percent(seed: int, chunk: float = 0.05, limit: float = 20.0) -> tuple[float, float]:
     """Sample in chunks until the L1 deviation of the running profile falls below 1 %; returns the
     sampled time units and the wall seconds (start included), or (inf, inf) within ``limit``."""
-    config = RodConfig(n=140, length=100.0, sigma=0.5, dt=1e-5, replicas=16, bins=25, seed=seed)
-    exact = exact_profile(config).bin_means(config.bins)
+    config = rod_config(n=140, length=100.0, sigma=0.5, dt=1e-5, replicas=16, bins=25, seed=seed)
+    exact = exact_profile(config).bin_means(config.sampling.bins)
     start = time.perf_counter()
     simulation = RodSimulation(config)
     simulation.equilibrate(0.25)
-    rods, gaps = np.zeros((config.replicas, config.bins)), np.zeros((config.replicas, config.bins, config.gap_bins))
+    rods, gaps = (
+        np.zeros((config.sampling.replicas, config.sampling.bins)),
+        np.zeros((config.sampling.replicas, config.sampling.bins, config.sampling.gap_bins)),
+    )
     sampled = 0.0
     while sampled < limit:
-        simulation.advance(round(chunk / config.dt), (rods, gaps))
+        simulation.advance(round(chunk / config.numerics.dt), (rods, gaps))
         sampled += chunk
-        rho = rods.sum(0) / rods.sum() * config.bins * config.mean_density
-        if np.mean(np.abs(rho - exact)) / config.mean_density < 0.01:
+        rho = rods.sum(0) / rods.sum() * config.sampling.bins * config.model.mean_density
+        if np.mean(np.abs(rho - exact)) / config.model.mean_density < 0.01:
             return sampled, time.perf_counter() - start
     return math.inf, math.inf
 

@@ -13,7 +13,7 @@ from __future__ import annotations
 import sys
 import time
 
-from fricgen.rods import RodConfig, RodSimulation, deviations, exact_profile, extrapolate_to_zero_dt
+from fricgen.rods import RodSimulation, deviations, exact_profile, extrapolate_to_zero_dt, rod_config
 
 STEPS = (1e-4, 4e-5, 1e-5, 2.5e-6)
 
@@ -21,7 +21,7 @@ STEPS = (1e-4, 4e-5, 1e-5, 2.5e-6)
 def study(n: int, duration: float) -> None:
     profiles = []
     for dt in STEPS:
-        config = RodConfig(n=n, length=100.0, sigma=0.5, dt=dt, replicas=16, bins=25, seed=11)
+        config = rod_config(n=n, length=100.0, sigma=0.5, dt=dt, replicas=16, bins=25, seed=11)
         simulation = RodSimulation(config)
         simulation.equilibrate(0.25)
         start = time.perf_counter()

@@ -87,7 +87,7 @@ def main() -> None:
 
     with tempfile.TemporaryDirectory() as out:
         t = time.perf_counter()
-        subprocess.run([sys.executable, "-m", "fricgen.cli", "generate", "--output", out], check=True, capture_output=True)
+        subprocess.run([sys.executable, "-m", "fricgen", "generate", "--output", out], check=True, capture_output=True)
         print(f"regenerate the whole catalogue (derive + verify + emit, fresh process): {time.perf_counter() - t:.1f} s")
 
     code = (

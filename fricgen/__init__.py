@@ -1,7 +1,22 @@
 """fricgen: thermodynamically consistent frictional contacts, derived symbolically.
 
-The runtime package. It does not import SymPy at import time; the symbolic layer lives in
-``derive`` and is reached only by the commands that derive or verify (``fricgen verify``).
+The runtime package, in layers (docs/physics.md explains the physics they follow); each
+subpackage's ``__init__`` is its public API:
+
+- ``fricgen.kernels``: the one loader of generated kernels and their types (the kernel ABI);
+- ``fricgen.rng``: counter-based random numbers and the one registry of noise streams;
+- ``fricgen.schema``, ``fricgen.errors``: typed configuration sections, one error family;
+- ``fricgen.langevin``: the Langevin engine of frictional spheres (2-D and 3-D);
+- ``fricgen.rods``: Brownian cluster dynamics of rods, with the exact theory;
+- ``fricgen.app``: the ``fricgen`` command line, run files, the demo.
+
+The engines import only the kernel layer, the RNG, schema/errors and derive's plain-data modules
+(``derive.calculus``, ``derive.lawdata``); never each other, the application or SymPy
+(tests/test_layers.py). ``import fricgen`` itself loads nothing but the error family.
 """
 
+from .errors import ConfigError, FricgenError, KernelError, SimulationError
+
 __version__ = "0.1.0"
+
+__all__ = ["ConfigError", "FricgenError", "KernelError", "SimulationError", "__version__"]

@@ -18,7 +18,7 @@ class ConfigError(FricgenError, ValueError):
     """A configuration or argument that cannot run: names the key, the problem and the fix."""
 
     def __init__(self, key: str, problem: str, fix: str = ""):
-        self.key = key
+        self.key, self.problem, self.fix = key, problem, fix
         super().__init__(f"{key}: {problem}" + (f"; {fix}" if fix else ""))
 
 

@@ -6,6 +6,8 @@ Keys are mixed with chained SplitMix64 finalisers (Steele, Lea, Flood 2014); nor
 the Box–Muller transform of two 53-bit uniforms (two normals per key). The cheaper ``ziggurat_normal``
 (one normal per index from one SplitMix64 output, Marsaglia & Tsang's ziggurat) serves engines that
 need one normal per particle and step.
+
+The physics: docs/physics.md#counter-based-noise.
 """
 
 from __future__ import annotations
@@ -21,8 +23,16 @@ _M2 = np.uint64(0x94D049BB133111EB)
 _S30, _S27, _S31, _S11 = np.uint64(30), np.uint64(27), np.uint64(31), np.uint64(11)
 _TWO_53 = 1.0 / 9007199254740992.0
 
-#: Streams: independent noise sources keyed on the same (step, i, k).
-SOLVENT, CONTACT, INITIAL = 1, 2, 3
+#: The one registry of streams: independent noise sources keyed on the same (seed, step, i, k).
+#: Every engine takes its stream ids from here. Ids are distinct within an engine (the Langevin
+#: engine's 1-4, the rods' 4-5 never meet in one run); their values are fixed, since a seed must
+#: keep reproducing earlier runs bit for bit.
+SOLVENT = 1  # Langevin: Ornstein–Uhlenbeck solvent kicks, per particle
+CONTACT = 2  # Langevin: frictional contact noise, per pair
+INITIAL = 3  # initial velocities, spins and orientations; rods: shifts of the evenly spaced start
+WALL_ROUGHNESS = 4  # Langevin: Gaussian heights of rough slab walls
+BCD = 4  # rods: Brownian trial forces, per replica and rod
+MONTE_CARLO = 5  # rods: Metropolis proposals and acceptances of the equilibrium start
 
 
 @numba.njit(inline="always", cache=True)

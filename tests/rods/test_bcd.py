@@ -1,20 +1,19 @@
 """Brownian cluster dynamics: the cluster rule, hard-core invariants, reproducibility, and profiles
 against the exact theory (hard rods dilute and dense, sticky rods)."""
 
-import dataclasses
 import math
 
 import numpy as np
 import pytest
 
-from fricgen import bcd
 from fricgen.rods import (
-    RodConfig,
     RodSimulation,
+    bcd,
     best_exponent,
     deviations,
     exact_profile,
     extrapolate_to_zero_dt,
+    rod_config,
     sticky_force_max,
 )
 
@@ -31,7 +30,7 @@ def sample(config, duration, equilibration=0.25):
     """From the Monte Carlo equilibrium start: ``equilibration`` at dt (the BCD contact layer forms), then sample."""
     simulation = RodSimulation(config)
     simulation.equilibrate(equilibration)
-    return simulation.run(round(duration / config.dt))
+    return simulation.run(round(duration / config.numerics.dt))
 
 
 def test_cluster_rule_splits_at_the_largest_positive_mean_force_difference():
@@ -41,18 +40,18 @@ def test_cluster_rule_splits_at_the_largest_positive_mean_force_difference():
 
 
 def test_rods_never_overlap_or_pass_in_long_dense_runs():
-    config = RodConfig(n=180, length=100.0, sigma=0.5, dt=1e-3, replicas=4, seed=5)  # rho_bar sigma = 0.9
+    config = rod_config(n=180, length=100.0, sigma=0.5, dt=1e-3, replicas=4, seed=5)  # rho_bar sigma = 0.9
     simulation = RodSimulation(config)
     for _ in range(20):
         simulation.advance(1000)  # raises on any overlap (the engine checks after every step)
         x = simulation.positions
-        gaps = np.diff(np.concatenate([x, x[:, :1] + config.length], axis=1), axis=1)
-        assert gaps.min() >= config.sigma * (1 - 1e-9)
+        gaps = np.diff(np.concatenate([x, x[:, :1] + config.model.length], axis=1), axis=1)
+        assert gaps.min() >= config.model.sigma * (1 - 1e-9)
 
 
 def test_same_seed_same_run_and_chunking_does_not_matter():
-    config = RodConfig(n=60, dt=1e-4, replicas=2, seed=9)
-    a, b, c = RodSimulation(config), RodSimulation(config), RodSimulation(RodConfig(n=60, dt=1e-4, replicas=2, seed=10))
+    config = rod_config(n=60, dt=1e-4, replicas=2, seed=9)
+    a, b, c = RodSimulation(config), RodSimulation(config), RodSimulation(rod_config(n=60, dt=1e-4, replicas=2, seed=10))
     a.advance(600)
     for _ in range(3):
         b.advance(200)
@@ -62,7 +61,7 @@ def test_same_seed_same_run_and_chunking_does_not_matter():
 
 def test_dilute_density_profile_matches_the_exact_theory():
     """rho_bar sigma = 0.2, U0 = 6 (B sec. III C): chi^2 per bin against the exact profile."""
-    config = RodConfig(n=40, length=100.0, sigma=0.5, dt=1e-5, replicas=16, bins=50, seed=7)
+    config = rod_config(n=40, length=100.0, sigma=0.5, dt=1e-5, replicas=16, bins=50, seed=7)
     figures = deviations(sample(config, 0.5), exact_profile(config), contact=False)
     assert figures["chi2_per_dof"] < 2.0, figures  # 50 bins: P(chi^2/50 > 2) < 1e-4 for a correct profile
     assert figures["l1_dev_over_rho"] < 0.01, figures
@@ -73,11 +72,11 @@ def test_any_generated_field_the_asymmetric_ratchet():
     profile within error (the mean error is about 1.3 % of rho_bar here); the exact profile at
     a = 1.25 is rejected."""
     ratchet = {"field": "ratchet", "field_params": {"a": 1.5}}
-    config = RodConfig(n=40, length=100.0, sigma=0.5, U0=4.0, **ratchet, dt=1e-5, replicas=16, bins=50, seed=8)
+    config = rod_config(n=40, length=100.0, sigma=0.5, U0=4.0, **ratchet, dt=1e-5, replicas=16, bins=50, seed=8)
     measured = sample(config, 1.0)
     figures = deviations(measured, exact_profile(config), contact=False)
     assert figures["chi2_per_dof"] < 2.0, figures
-    other = deviations(measured, exact_profile(dataclasses.replace(config, field_params={"a": 1.25})), contact=False)
+    other = deviations(measured, exact_profile(config.replace(field_params={"a": 1.25})), contact=False)
     assert other["chi2_per_dof"] > 10.0, other
 
 
@@ -86,11 +85,11 @@ def test_continuous_pair_force_from_a_generated_pair_potential():
     r = 0.55 * 2^(1/6)) at rho_bar sigma = 0.6 match the exact theory with that pair potential; the
     hard-rod profile is rejected."""
     wca = {"pair": "wca", "pair_params": {"epsilon": 1.0, "sigma": 0.55}, "pair_range": 0.55 * 2 ** (1 / 6) - 0.5}
-    config = RodConfig(n=120, length=100.0, sigma=0.5, **wca, dt=1e-5, replicas=16, bins=50, seed=1)
+    config = rod_config(n=120, length=100.0, sigma=0.5, **wca, dt=1e-5, replicas=16, bins=50, seed=1)
     measured = sample(config, 1.0)
     figures = deviations(measured, exact_profile(config), contact=False)
     assert figures["chi2_per_dof"] < 2.0, figures
-    hard = deviations(measured, exact_profile(dataclasses.replace(config, pair=None, pair_params={}, pair_range=0.0)), contact=False)
+    hard = deviations(measured, exact_profile(config.replace(pair=None, pair_params={}, pair_range=0.0)), contact=False)
     assert hard["chi2_per_dof"] > 10.0, hard
 
 
@@ -111,15 +110,15 @@ def tilted_cosine_drift(U0, force, kT=1.0, mu=1.0, points=400):
 def test_constant_drive_gives_the_exact_drift_in_the_tilted_field():
     """Two rods on a ring of 100 wavelengths (they rarely meet) driven by F = 2 over U0 = 4 barriers:
     the mean velocity over 50 time units is the exact single-particle drift, not the free mu F."""
-    config = RodConfig(n=2, length=100.0, sigma=0.5, U0=4.0, drive=2.0, dt=1e-4, replicas=32, seed=3)
+    config = rod_config(n=2, length=100.0, sigma=0.5, U0=4.0, drive=2.0, dt=1e-4, replicas=32, seed=3)
     simulation = RodSimulation(config)
     simulation.equilibrate(1.0)
     start, duration = simulation.positions.copy(), 50.0
-    simulation.advance(round(duration / config.dt))
+    simulation.advance(round(duration / config.numerics.dt))
     drift = (simulation.positions - start).mean(1) / duration  # one sample per replica
     mean, error = drift.mean(), drift.std(ddof=1) / np.sqrt(drift.size)
     assert abs(mean - tilted_cosine_drift(4.0, 2.0)) < 4 * error, (mean, error)
-    assert abs(mean - config.mu * config.drive) > 10 * error
+    assert abs(mean - config.model.mu * config.model.drive) > 10 * error
 
 
 def test_open_line_hard_rods_are_sorted_free_brownian_motions():
@@ -127,22 +126,22 @@ def test_open_line_hard_rods_are_sorted_free_brownian_motions():
     motions relabelled in order (reflection = exchange of labels). From 3 rods packed in contact, at time T:
     E[y_last] = -E[y_first] = sqrt(2 D T) E[max of 3 normals] = sqrt(2 D T) 3 / (2 sqrt(pi)), E[y_middle] = 0,
     Var(mean y) = 2 D T / 3. Rods that passed through each other or stayed one cluster would give 0."""
-    config = RodConfig(n=3, length=math.inf, sigma=0.5, U0=0.0, dt=1e-5, replicas=3000, start_sweeps=0, seed=2)
-    packed = np.arange(config.n) * config.sigma
+    config = rod_config(n=3, length=math.inf, sigma=0.5, U0=0.0, dt=1e-5, replicas=3000, start_sweeps=0, seed=2)
+    packed = np.arange(config.model.n) * config.model.sigma
     simulation = RodSimulation(config, positions=packed)
     duration = 0.1
-    simulation.advance(round(duration / config.dt))
-    y = (simulation.positions - packed) / math.sqrt(2 * config.diffusion * duration)
-    error = y.std(0, ddof=1) / math.sqrt(config.replicas)
+    simulation.advance(round(duration / config.numerics.dt))
+    y = (simulation.positions - packed) / math.sqrt(2 * config.model.diffusion * duration)
+    error = y.std(0, ddof=1) / math.sqrt(config.sampling.replicas)
     expected = np.array([-1.0, 0.0, 1.0]) * 3 / (2 * math.sqrt(math.pi))
     assert np.all(np.abs(y.mean(0) - expected) < 4 * error), (y.mean(0), error)
-    assert y.mean(1).var() * config.n == pytest.approx(1.0, abs=4 * math.sqrt(2 / config.replicas))
+    assert y.mean(1).var() * config.model.n == pytest.approx(1.0, abs=4 * math.sqrt(2 / config.sampling.replicas))
     with pytest.raises(ValueError, match="ring of finite length"):
         simulation.run(10)
     with pytest.raises(ValueError, match="needs initial positions"):
         RodSimulation(config)
     with pytest.raises(ValueError, match="no equilibrium"):
-        RodConfig(length=math.inf)
+        rod_config(length=math.inf)
     with pytest.raises(ValueError, match="at least sigma"):
         RodSimulation(config, positions=[0.0, 0.4, 1.0])
 
@@ -150,7 +149,7 @@ def test_open_line_hard_rods_are_sorted_free_brownian_motions():
 def test_dense_profile_and_contact_density_after_extrapolation_in_sqrt_dt():
     """rho_bar sigma = 0.7: BCD's O(sqrt(dt)) bias is resolved at dt = 4e-5 and 1e-5 (the contact density
     is 12 % and 6 % low), and the extrapolation to dt = 0 agrees with the exact theory within error."""
-    coarse, fine = (RodConfig(n=140, length=100.0, sigma=0.5, dt=dt, replicas=16, bins=25, seed=11) for dt in (4e-5, 1e-5))
+    coarse, fine = (rod_config(n=140, length=100.0, sigma=0.5, dt=dt, replicas=16, bins=25, seed=11) for dt in (4e-5, 1e-5))
     exact = exact_profile(fine)
     runs = [sample(config, 1.25) for config in (coarse, fine)]
     biased = deviations(runs[0], exact)
@@ -167,7 +166,7 @@ def test_sticky_rods_match_the_exact_theory_of_their_representation_after_extrap
     of the exact delta_eps profile (B-31), and the hard-rod profile is rejected. Baxter's limit (B-29)
     differs by O(eps), about 0.4 % of rho_bar (fricgen bcd reports it)."""
     coarse, fine = (
-        RodConfig(n=50, length=100.0, sigma=0.5, gamma=1.0, p=3.0, eps=0.05, dt=dt, replicas=16, bins=25, seed=4) for dt in (1e-5, 2.5e-6)
+        rod_config(n=50, length=100.0, sigma=0.5, gamma=1.0, p=3.0, eps=0.05, dt=dt, replicas=16, bins=25, seed=4) for dt in (1e-5, 2.5e-6)
     )
     exact = exact_profile(fine)
     runs = [sample(config, 1.5, equilibration=0.1) for config in (coarse, fine)]
@@ -175,7 +174,7 @@ def test_sticky_rods_match_the_exact_theory_of_their_representation_after_extrap
     assert biased["chi2_per_dof"] > 3.0, biased
     figures = deviations(extrapolate_to_zero_dt(*runs, 4.0), exact, contact=False)
     assert figures["chi2_per_dof"] < 2.0 and figures["l1_dev_over_rho"] < 0.025, figures
-    hard = deviations(runs[1], exact_profile(dataclasses.replace(fine, gamma=0.0)), contact=False)
+    hard = deviations(runs[1], exact_profile(fine.replace(gamma=0.0)), contact=False)
     assert hard["chi2_per_dof"] > 10.0, hard
 
 
@@ -189,33 +188,33 @@ def test_sticky_force_helpers():
 
 def test_bad_configurations_are_refused():
     with pytest.raises(ValueError, match="close packing"):
-        RodConfig(n=200, length=100.0, sigma=0.5)
+        rod_config(n=200, length=100.0, sigma=0.5)
     with pytest.raises(ValueError, match="whole number of wavelengths"):
-        RodConfig(length=100.5)
+        rod_config(length=100.5)
     with pytest.raises(ValueError, match="p > 1"):
-        RodConfig(gamma=1.0, p=1.0)
+        rod_config(gamma=1.0, p=1.0)
     with pytest.warns(UserWarning, match="B-33"):
-        RodSimulation(RodConfig(gamma=1.0, dt=1e-3))
+        RodSimulation(rod_config(gamma=1.0, dt=1e-3))
     with pytest.raises(ValueError, match="gap_bins"):
-        RodSimulation(RodConfig(n=20, dt=1e-3, gap_bins=10, replicas=2)).run(20)
+        RodSimulation(rod_config(n=20, dt=1e-3, gap_bins=10, replicas=2)).run(20)
     with pytest.raises(ValueError, match="pair potential"):
-        RodSimulation(RodConfig(field="sticky"))
+        RodSimulation(rod_config(field="sticky"))
     with pytest.raises(ValueError, match=r"no parameter\(s\) \['b'\]"):
-        exact_profile(RodConfig(field="ratchet", field_params={"b": 1.0}))
+        exact_profile(rod_config(field="ratchet", field_params={"b": 1.0}))
     with pytest.raises(LookupError, match="no generated potential 'sawtooth'"):
-        RodSimulation(RodConfig(field="sawtooth"))
+        RodSimulation(rod_config(field="sawtooth"))
     with pytest.raises(ValueError, match="U0 and wavelength"):
-        RodConfig(field_params={"lambda": 2.0})
+        rod_config(field_params={"lambda": 2.0})
     wca = {"pair": "wca", "pair_params": {"sigma": 0.55}}
     with pytest.raises(ValueError, match="gamma = 0"):
-        RodConfig(**wca, pair_range=0.12, gamma=1.0)
+        rod_config(**wca, pair_range=0.12, gamma=1.0)
     with pytest.raises(ValueError, match="pair_range < sigma"):
-        RodConfig(**wca, pair_range=0.5)
+        rod_config(**wca, pair_range=0.5)
     with pytest.raises(ValueError, match="not zero beyond"):
-        RodSimulation(RodConfig(**wca, pair_range=0.1))  # WCA reaches 0.617
+        RodSimulation(rod_config(**wca, pair_range=0.1))  # WCA reaches 0.617
     with pytest.raises(ValueError, match="external field"):
-        RodSimulation(RodConfig(pair="cosine", pair_range=0.1))
+        RodSimulation(rod_config(pair="cosine", pair_range=0.1))
     with pytest.raises(ValueError, match="need a pair potential"):
-        RodConfig(pair_range=0.1)
+        rod_config(pair_range=0.1)
     with pytest.raises(ValueError, match="replicas >= 2"):
-        RodSimulation(RodConfig(n=20, dt=1e-3)).run(20)
+        RodSimulation(rod_config(n=20, dt=1e-3, replicas=1)).run(20)

@@ -4,8 +4,7 @@ not depend on the number of threads."""
 import numba
 import numpy as np
 
-from fricgen import bcd
-from fricgen.rods import RodConfig, RodSimulation
+from fricgen.rods import RodSimulation, bcd, rod_config
 
 
 def reference_step(x, forces, length, sigma, mu, dt):
@@ -49,18 +48,20 @@ def reference_step(x, forces, length, sigma, mu, dt):
 
 def test_step_matches_the_direct_algorithm():
     """Dense rods (rho_bar sigma = 0.9) with long steps: many collisions and clusters per step."""
-    config = RodConfig(n=90, length=50.0, sigma=0.5, dt=1e-3, seed=3)
+    config = rod_config(n=90, length=50.0, sigma=0.5, dt=1e-3, seed=3)
     simulation = RodSimulation(config)
     simulation.advance(200)  # leaves clusters in exact contact
-    x, n = simulation.positions[0].copy(), config.n
+    x, n = simulation.positions[0].copy(), config.model.n
     rng = np.random.default_rng(4)
     v, members, stack, prefix = np.empty(n), np.empty(n, dtype=np.int64), np.empty((2 * n + 2, 2), dtype=np.int64), np.empty(n + 1)
     heap_t, heap_i, when = np.empty(3 * n), np.empty(3 * n, dtype=np.int64), np.empty(n)
     merges = 0
     for _ in range(30):
-        forces = rng.normal(0.0, np.sqrt(2.0 / config.dt), n)
-        expected, expected_v, count = reference_step(x, forces, config.length, config.sigma, 1.0, config.dt)
-        status = bcd._step(x, forces, v, config.length, config.sigma, 1.0, config.dt, members, stack, prefix, heap_t, heap_i, when)
+        forces = rng.normal(0.0, np.sqrt(2.0 / config.numerics.dt), n)
+        expected, expected_v, count = reference_step(x, forces, config.model.length, config.model.sigma, 1.0, config.numerics.dt)
+        status = bcd._step(
+            x, forces, v, config.model.length, config.model.sigma, 1.0, config.numerics.dt, (members, stack, prefix), (heap_t, heap_i, when)
+        )
         assert status == bcd.OK
         np.testing.assert_allclose(x, expected, rtol=0, atol=1e-10)
         np.testing.assert_allclose(v, expected_v, rtol=1e-12)
@@ -80,7 +81,7 @@ def test_a_full_heap_keeps_the_valid_events_only():
     size = 0
     for t, i in ((3e-4, 1), (1e-4, 5), (9e-4, 2), (7e-4, 6)):
         size = bcd._push(heap_t, heap_i, size, t, i)
-    size = bcd._schedule(x, v, 3, 0.0, length, sigma, dt, heap_t, heap_i, size, when)
+    size = bcd._schedule(x, v, 3, 0.0, length, sigma, dt, (heap_t, heap_i, when), size)
     events = []
     while size > 0:
         t, i, size = bcd._pop(heap_t, heap_i, size)
@@ -89,7 +90,7 @@ def test_a_full_heap_keeps_the_valid_events_only():
 
 
 def test_runs_do_not_depend_on_the_number_of_threads():
-    config = RodConfig(n=40, dt=1e-4, replicas=3, seed=2)
+    config = rod_config(n=40, dt=1e-4, replicas=3, seed=2)
     threads = numba.get_num_threads()
     runs = []
     try:

@@ -1,32 +1,32 @@
-"""The Monte Carlo start (rods_mc) samples the exact equilibrium: profiles of dense hard rods, of sticky
-rods and of rods with a WCA repulsion in the ratchet field against rods_theory, with errors from
+"""The Monte Carlo start (fricgen.rods.mc) samples the exact equilibrium: profiles of dense hard rods, of sticky
+rods and of rods with a WCA repulsion in the ratchet field against fricgen.rods.theory, with errors from
 independent replicas; a wrong model is rejected."""
 
 import numpy as np
 import pytest
 
-from fricgen.rods import RodConfig, RodProfiles, RodSimulation, deviations, exact_profile
+from fricgen.rods import RodProfiles, RodSimulation, deviations, exact_profile, rod_config
 
 
 def mc_profile(config, sweeps, every=5):
     """rho(x) sampled every ``every`` sweeps after the start; errors from the scatter between replicas."""
     simulation = RodSimulation(config)
-    counts = np.zeros((config.replicas, config.bins))
+    counts = np.zeros((config.sampling.replicas, config.sampling.bins))
     for _ in range(sweeps // every):
         simulation.thermalize(every)
-        bins = ((simulation.positions / config.wavelength) % 1.0 * config.bins).astype(int) % config.bins
+        bins = ((simulation.positions / config.model.wavelength) % 1.0 * config.sampling.bins).astype(int) % config.sampling.bins
         for replica, b in enumerate(bins):
-            counts[replica] += np.bincount(b, minlength=config.bins)
-    rho = counts / (sweeps // every) * config.bins / config.length
-    x = (np.arange(config.bins) + 0.5) / config.bins
-    return RodProfiles(x, rho.mean(0), rho.std(0, ddof=1) / np.sqrt(config.replicas), x * np.nan, x * np.nan, 0)
+            counts[replica] += np.bincount(b, minlength=config.sampling.bins)
+    rho = counts / (sweeps // every) * config.sampling.bins / config.model.length
+    x = (np.arange(config.sampling.bins) + 0.5) / config.sampling.bins
+    return RodProfiles(x, rho.mean(0), rho.std(0, ddof=1) / np.sqrt(config.sampling.replicas), x * np.nan, x * np.nan, 0)
 
 
 @pytest.mark.parametrize(
     "config",
     [
-        RodConfig(n=140, length=100.0, sigma=0.5, replicas=16, bins=25, seed=3),  # rho_bar sigma = 0.7
-        RodConfig(n=50, length=100.0, sigma=0.5, gamma=1.0, eps=0.05, dt=1e-5, replicas=16, bins=25, seed=3),
+        rod_config(n=140, length=100.0, sigma=0.5, replicas=16, bins=25, seed=3),  # rho_bar sigma = 0.7
+        rod_config(n=50, length=100.0, sigma=0.5, gamma=1.0, eps=0.05, dt=1e-5, replicas=16, bins=25, seed=3),
     ],
     ids=["dense-hard", "sticky"],
 )
@@ -34,26 +34,26 @@ def test_monte_carlo_samples_the_exact_profile(config):
     measured = mc_profile(config, 2000)
     figures = deviations(measured, exact_profile(config), contact=False)
     assert figures["chi2_per_dof"] < 2.0 and figures["l1_dev_over_rho"] < 0.02, figures
-    other = RodConfig(n=config.n, length=100.0, sigma=0.5, gamma=1.0 - config.gamma, eps=0.05, dt=1e-5, bins=25)
+    other = rod_config(n=config.model.n, length=100.0, sigma=0.5, gamma=1.0 - config.model.gamma, eps=0.05, dt=1e-5, bins=25)
     assert deviations(measured, exact_profile(other), contact=False)["chi2_per_dof"] > 10.0  # hard vs sticky told apart
 
 
 def test_monte_carlo_with_a_generated_field_and_pair_potential():
     wca = {"pair": "wca", "pair_params": {"sigma": 0.55}, "pair_range": 0.55 * 2 ** (1 / 6) - 0.5}
-    config = RodConfig(n=120, length=100.0, sigma=0.5, U0=4.0, field="ratchet", **wca, dt=1e-5, replicas=16, bins=25, seed=3)
+    config = rod_config(n=120, length=100.0, sigma=0.5, U0=4.0, field="ratchet", **wca, dt=1e-5, replicas=16, bins=25, seed=3)
     measured = mc_profile(config, 2000)
     figures = deviations(measured, exact_profile(config), contact=False)
     assert figures["chi2_per_dof"] < 2.0, figures
-    hard = RodConfig(n=120, length=100.0, sigma=0.5, U0=4.0, field="ratchet", bins=25)
+    hard = rod_config(n=120, length=100.0, sigma=0.5, U0=4.0, field="ratchet", bins=25)
     assert deviations(measured, exact_profile(hard), contact=False)["chi2_per_dof"] > 10.0
 
 
 def test_start_is_ordered_reproducible_and_moves():
-    config = RodConfig(n=140, length=100.0, sigma=0.5, replicas=2, seed=4)
+    config = rod_config(n=140, length=100.0, sigma=0.5, replicas=2, seed=4)
     a, b = RodSimulation(config), RodSimulation(config)
     assert np.array_equal(a.positions, b.positions) and 0.05 < a.acceptance < 0.95
     x = a.positions
-    gaps = np.diff(np.concatenate([x, x[:, :1] + config.length], axis=1), axis=1)
-    assert gaps.min() >= config.sigma
-    lattice = RodSimulation(RodConfig(n=140, length=100.0, sigma=0.5, replicas=2, seed=4, start_sweeps=0)).positions
+    gaps = np.diff(np.concatenate([x, x[:, :1] + config.model.length], axis=1), axis=1)
+    assert gaps.min() >= config.model.sigma
+    lattice = RodSimulation(rod_config(n=140, length=100.0, sigma=0.5, replicas=2, seed=4, start_sweeps=0)).positions
     assert np.abs(x - lattice).max() > 1.0  # rods left their lattice wells

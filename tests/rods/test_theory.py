@@ -4,7 +4,7 @@
 import numpy as np
 import pytest
 
-from fricgen.rods_theory import percus_residual, rod_profile, sticky_residual, sticky_rods, tonks
+from fricgen.rods import Neighbours, percus_residual, rod_profile, sticky_residual, sticky_rods, tonks
 
 
 def cosine(amplitude=6.0):
@@ -27,7 +27,7 @@ def test_uniform_hard_rods_are_tonks(density):
 
 @pytest.mark.parametrize("gamma", [0.3, 1.0, 3.0])
 def test_uniform_sticky_rods_are_baxter(gamma):
-    profile = rod_profile(flat, 0.5, 1.0, gamma=gamma)
+    profile = rod_profile(flat, 0.5, 1.0, neighbours=Neighbours(gamma))
     pressure, beta_mu = sticky_rods(1.0, 0.5, gamma)
     assert profile.beta_pressure == pytest.approx(pressure, rel=1e-10)
     assert profile.beta_mu == pytest.approx(beta_mu, abs=1e-10)
@@ -52,7 +52,7 @@ def test_uniform_rods_with_a_pair_potential_follow_the_nearest_neighbour_equatio
         return (weight[1] + tail[1]) / (weight[0] + tail[0])
 
     pressure = brentq(lambda b: mean_spacing(b) - 1 / density, 1e-3, 1e3, xtol=1e-14)
-    profile = rod_profile(flat, 0.5, density, pair=soft_shell, pair_range=0.1)
+    profile = rod_profile(flat, 0.5, density, neighbours=Neighbours(pair=soft_shell, pair_range=0.1))
     np.testing.assert_allclose(profile.rho, density, rtol=1e-10)
     assert profile.beta_pressure == pytest.approx(pressure, rel=1e-6)  # V interpolated between grid points
     assert abs(rod_profile(flat, 0.5, density).beta_pressure / pressure - 1) > 0.01  # the shell matters (2 % at 0.4)
@@ -64,8 +64,8 @@ def test_the_sticky_representation_as_a_pair_potential_is_the_sticky_profile():
     def sticky(r):
         return -np.log1p(gamma * (p + 1) / eps ** (p + 1) * (eps - (r - 0.5)) ** p)
 
-    direct = rod_profile(cosine(), 0.5, 1.0, gamma=gamma, eps=eps, p=p)
-    as_pair = rod_profile(cosine(), 0.5, 1.0, pair=sticky, pair_range=eps)
+    direct = rod_profile(cosine(), 0.5, 1.0, neighbours=Neighbours(gamma, eps, p))
+    as_pair = rod_profile(cosine(), 0.5, 1.0, neighbours=Neighbours(pair=sticky, pair_range=eps))
     np.testing.assert_allclose(as_pair.rho, direct.rho, rtol=1e-9)
     np.testing.assert_allclose(as_pair.contact, direct.contact, rtol=1e-9)
 
@@ -88,7 +88,7 @@ def test_hard_rods_solve_percus_functional_and_contact_formula(sigma, density):
 @pytest.mark.parametrize("gamma", [0.5, 2.0])
 def test_baxter_rods_solve_the_sticky_functional(gamma):
     """(B-34) as printed is stationary at the exact profile (to O(h^2)); the hard-rod profile is not."""
-    coarse, fine = (rod_profile(cosine(), 0.5, 1.0, gamma=gamma, points=m) for m in (600, 1200))
+    coarse, fine = (rod_profile(cosine(), 0.5, 1.0, neighbours=Neighbours(gamma), points=m) for m in (600, 1200))
     residuals = [np.abs(sticky_residual(p, cosine(), 0.5, gamma)).max() for p in (coarse, fine)]
     assert residuals[1] < 1e-5 and residuals[0] / residuals[1] > 3.5, residuals
     hard = rod_profile(cosine(), 0.5, 1.0)
@@ -97,11 +97,11 @@ def test_baxter_rods_solve_the_sticky_functional(gamma):
 
 def test_sticky_representation_converges_to_baxter_linearly_in_eps():
     """The delta_eps model (B-31) that BCD simulates differs from Baxter's limit by O(eps)."""
-    baxter = rod_profile(cosine(), 0.5, 1.0, gamma=1.0)
-    errors = [np.abs(rod_profile(cosine(), 0.5, 1.0, gamma=1.0, eps=e).rho - baxter.rho).mean() for e in (0.05, 0.01, 0.005)]
+    baxter = rod_profile(cosine(), 0.5, 1.0, neighbours=Neighbours(1.0))
+    errors = [np.abs(rod_profile(cosine(), 0.5, 1.0, neighbours=Neighbours(1.0, e)).rho - baxter.rho).mean() for e in (0.05, 0.01, 0.005)]
     assert 0.002 < errors[0] < 0.02 and 1.7 < errors[1] / errors[2] < 2.2, errors
-    finer = rod_profile(cosine(), 0.5, 1.0, gamma=1.0, eps=0.01, points=1200)  # the delta_eps peak is resolved
-    assert np.abs(finer.rho[::2] - rod_profile(cosine(), 0.5, 1.0, gamma=1.0, eps=0.01).rho).max() < 1e-4
+    finer = rod_profile(cosine(), 0.5, 1.0, neighbours=Neighbours(1.0, 0.01), points=1200)  # the delta_eps peak is resolved
+    assert np.abs(finer.rho[::2] - rod_profile(cosine(), 0.5, 1.0, neighbours=Neighbours(1.0, 0.01)).rho).max() < 1e-4
 
 
 def test_dilute_limit_is_boltzmann():
@@ -125,8 +125,8 @@ def test_bad_input_is_refused():
     with pytest.raises(ValueError, match="whole number of grid steps"):
         rod_profile(cosine(), 0.5004, 1.0)
     with pytest.raises(ValueError, match="eps"):
-        rod_profile(cosine(), 0.5, 1.0, gamma=1.0, eps=0.6)
+        rod_profile(cosine(), 0.5, 1.0, neighbours=Neighbours(1.0, 0.6))
     with pytest.raises(ValueError, match="not both"):
-        rod_profile(cosine(), 0.5, 1.0, gamma=1.0, pair=soft_shell, pair_range=0.1)
+        rod_profile(cosine(), 0.5, 1.0, neighbours=Neighbours(1.0, pair=soft_shell, pair_range=0.1))
     with pytest.raises(ValueError, match="0 < a < sigma"):
-        rod_profile(cosine(), 0.5, 1.0, pair=soft_shell, pair_range=0.5)
+        rod_profile(cosine(), 0.5, 1.0, neighbours=Neighbours(pair=soft_shell, pair_range=0.5))

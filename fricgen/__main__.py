@@ -1,0 +1,7 @@
+"""``python -m fricgen``: the command line."""
+
+import sys
+
+from .app.cli import main
+
+sys.exit(main())

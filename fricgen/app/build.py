@@ -1,0 +1,72 @@
+"""From a validated run configuration to a simulation at step 0: the law and its kernels, the
+particles, the initial state (lattice or random, in the box or in the slab between walls), walls.
+
+Each failure is a :class:`~fricgen.errors.ConfigError` naming the key, raised before any file is written.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..errors import ConfigError, KernelError
+from ..kernels import load_law_kernels
+from ..langevin.pairs import WCA_RANGE
+from ..langevin.simulation import Simulation
+from ..langevin.system import Particles, add_slab_walls, lattice_positions, packing_box, random_positions, thermal_state
+from .config import RunConfig, check_fraction, slab_half_height
+
+
+def check_law(c: RunConfig) -> None:
+    """The law is in the catalogue, its kernels are fresh, it has the calculus and the parameters."""
+    name = c.law.name
+    try:
+        kernels = load_law_kernels(name)
+    except KernelError as error:
+        raise ConfigError("law.name", str(error)) from error
+    if c.law.calculus not in kernels.calculi:
+        raise ConfigError("law.calculus", f"law {name} has no {c.law.calculus!r} noise", f"choose one of {list(kernels.calculi)}")
+    kernels.parameters(**c.law.parameters)
+
+
+def build(c: RunConfig) -> Simulation:
+    """The simulation of a validated configuration, from its initial state (step 0)."""
+    check_law(c)
+    config, s, dim = c.langevin(), c.system, c.system.dimension
+    if s.box is None:
+        box = packing_box(Particles.spheres(s.n, s.radius, s.mass), dim, s.packing_fraction)
+    else:
+        box = np.array([*s.box, 0.0][:3], dtype=float)
+    reach = 2 * (WCA_RANGE * 2 * s.radius + config.skin)
+    if not box[:dim].min() > reach:
+        raise ConfigError(
+            "system.box" if s.box is not None else "system.n",
+            f"the box {box[:dim].round(3).tolist()} is too small for the interaction range (each length must exceed {reach:.2f})",
+            "use more particles or a larger box",
+        )
+    region = box.copy()
+    if c.walls is not None:
+        region[1] = 2 * (c.walls.half_width - 2 * s.radius)
+    volume = np.prod(region[:dim])
+    per_particle = math.pi * s.radius**2 if dim == 2 else 4 / 3 * math.pi * s.radius**3
+    n = s.n if s.n is not None else max(2, round(s.packing_fraction * volume / per_particle))
+    if s.packing_fraction is None:
+        check_fraction("system.n", n * per_particle / volume, s)
+    particles = Particles.spheres(n, s.radius, s.mass)
+    place = region.copy()
+    if c.walls is not None:
+        place[1] = 2 * slab_half_height(c)
+    try:
+        if s.start == "lattice":
+            position = lattice_positions(n, place, dim, 2 * s.radius)
+        else:
+            position = random_positions(particles.radius, place, dim, seed=c.run.seed)
+    except ConfigError as error:
+        raise ConfigError("system.packing_fraction" if s.packing_fraction is not None else "system.n", error.problem, "lower it") from error
+    if c.walls is not None:
+        position[:, 1] += box[1] / 2 - slab_half_height(c)
+    state = thermal_state(particles, position, box, dim, c.thermostat.kT, c.run.seed)
+    if c.walls is not None:
+        particles, state = add_slab_walls(particles, state, c.walls.half_width, c.walls.roughness, c.run.seed, c.walls.spacing)
+    return Simulation(config, particles, state)

@@ -1,0 +1,232 @@
+"""Run configurations from TOML, checked in full (keys, types, values; :mod:`fricgen.app.build` adds
+the law's kernels and the initial state) before anything is written. One section per dataclass, a
+key per field; missing keys take the defaults. ``[law]``, ``[thermostat]``, ``[active]`` and
+``[bulk]`` are the Langevin engine's own sections (fricgen.langevin.config); ``[system]``,
+``[walls]``, ``[run]`` and ``[output]`` are defined here. Units: sigma = 1 (the diameter of a
+sphere of radius 1/2), kT = 1, m = 1, t0 = sqrt(m sigma^2 / kT).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..errors import ConfigError
+from ..langevin.config import Active, Bulk, LangevinConfig, Law, Thermostat
+from ..langevin.system import CLOSE_PACKING, RANDOM_LIMIT
+from ..schema import Section, structure
+
+EXAMPLES = Path(__file__).with_name("examples")
+
+
+#: The observables a run can tabulate (fricgen.app.observables writes them).
+OBSERVABLES = ("temperatures", "velocity_profile")
+
+
+@dataclass(frozen=True)
+class System(Section):
+    """``[system]``: ``dimension`` 2 or 3; ``n`` and ``packing_fraction`` (a cubic box), or ``box`` =
+    [Lx, Ly(, Lz)] with one of them; sphere ``radius``, ``mass`` (I = 2/5 m R^2); ``epsilon`` of WCA
+    (F-34) in kT; ``start`` "lattice" or "random". With walls the packing fraction counts the slab
+    the particles can reach, |y - Ly/2| <= half_width - 2 radius (the paper's accessible volume)."""
+
+    SECTION = "system"
+    dimension: int = 2
+    n: int | None = None
+    packing_fraction: float | None = None
+    box: tuple[float, ...] | None = None
+    radius: float = 0.5
+    mass: float = 1.0
+    epsilon: float = 1.0
+    start: str = "lattice"
+
+    def __post_init__(self):
+        self.require(self.dimension in (2, 3), "dimension", f"must be 2 or 3, got {self.dimension}", "set dimension = 2 or 3")
+        self.require_positive("radius", "mass")
+        self.require(
+            self.start in ("lattice", "random"), "start", f"must be 'lattice' or 'random', got {self.start!r}", 'set start = "lattice"'
+        )
+        if self.box is None:
+            self.require(
+                self.n is not None and self.packing_fraction is not None, "n", "needs n and packing_fraction, or a box", "add them"
+            )
+        else:
+            self.require(
+                len(self.box) == self.dimension, "box", f"needs {self.dimension} lengths, got {len(self.box)}", "give [Lx, Ly(, Lz)]"
+            )
+            self.require(
+                all(0 < x < math.inf for x in self.box), "box", f"lengths must be finite and positive, got {list(self.box)}", "fix them"
+            )
+            self.require(
+                (self.n is None) != (self.packing_fraction is None), "n", "with a box give one of n and packing_fraction", "remove one"
+            )
+        if self.n is not None:
+            self.require(self.n >= 2, "n", f"needs at least 2 particles, got {self.n}", "give n >= 2")
+        if self.packing_fraction is not None:
+            check_fraction(self.key("packing_fraction"), self.packing_fraction, self)
+
+
+@dataclass(frozen=True)
+class Walls(Section):
+    """``[walls]``: two walls of immobile spheres at y = Ly/2 +- ``half_width`` + ``roughness`` zeta_j
+    on a square lattice of constant ``spacing`` (F-42; needs ``system.box``)."""
+
+    SECTION = "walls"
+    half_width: float
+    roughness: float = 0.0
+    spacing: float = 1.0
+
+    def __post_init__(self):
+        self.require_nonnegative("roughness")
+        self.require(
+            self.spacing > 0, "spacing", f"must be positive, got {self.spacing}", "give the walls' lattice constant (the paper: 1)"
+        )
+        self.require_positive("half_width")
+
+
+@dataclass(frozen=True)
+class Run(Section):
+    """``[run]``: ``steps`` in all, the first ``equilibrate`` left out of the averages, noise ``seed``,
+    ``chunk`` = steps between observer calls (and Ctrl-C checks)."""
+
+    SECTION = "run"
+    steps: int = 10_000
+    equilibrate: int = 0
+    seed: int = 1
+    chunk: int = 1000
+
+    def __post_init__(self):
+        self.require(self.steps >= 1, "steps", f"must be >= 1, got {self.steps}", "give the number of steps")
+        self.require(
+            0 <= self.equilibrate < self.steps, "equilibrate", f"must be in [0, steps = {self.steps}), got {self.equilibrate}", "lower it"
+        )
+        self.require(self.chunk >= 1, "chunk", f"must be >= 1, got {self.chunk}", "give the steps between observer calls, e.g. 1000")
+
+
+@dataclass(frozen=True)
+class Output(Section):
+    """``[output]``: ``observables`` (see :mod:`fricgen.app.observables`) every ``period`` steps, GSD
+    frames every ``trajectory_period`` (0: none), checkpoints every ``checkpoint_period`` (0: only at
+    the end or on Ctrl-C), ``profile_bins`` slabs of the velocity profile; periods are multiples of
+    ``run.chunk``."""
+
+    SECTION = "output"
+    period: int = 1000
+    trajectory_period: int = 10_000
+    checkpoint_period: int = 0
+    observables: tuple[str, ...] = ("temperatures",)
+    profile_bins: int = 40
+
+    def __post_init__(self):
+        for name in self.observables:
+            self.require(name in OBSERVABLES, "observables", f"unknown observable {name!r}", f"choose from {list(OBSERVABLES)}")
+        self.require(self.profile_bins >= 1, "profile_bins", f"must be >= 1, got {self.profile_bins}", "give the number of slabs along y")
+
+
+@dataclass(frozen=True)
+class RunConfig(Section):
+    """A validated configuration; ``walls`` is None without a ``[walls]`` section."""
+
+    system: System
+    law: Law = field(default_factory=Law)
+    thermostat: Thermostat = field(default_factory=Thermostat)
+    active: Active = field(default_factory=Active)
+    bulk: Bulk = field(default_factory=Bulk)
+    walls: Walls | None = None
+    run: Run = field(default_factory=Run)
+    output: Output = field(default_factory=Output)
+
+    def __post_init__(self):
+        s, dim = self.system, self.system.dimension
+        self.require(len(self.bulk.force) in (0, dim), "bulk.force", f"needs {dim} components", "give [Fx, Fy] in 2-D, [Fx, Fy, Fz] in 3-D")
+        for key in ("period", "trajectory_period", "checkpoint_period"):
+            value, chunk = getattr(self.output, key), self.run.chunk
+            smallest = "a positive" if key == "period" else "0 (never) or a positive"
+            allowed = (value > 0 or (value == 0 and key != "period")) and value % chunk == 0
+            self.require(
+                allowed, f"output.{key}", f"must be {smallest} multiple of run.chunk = {chunk}, got {value}", "adjust it or run.chunk"
+            )
+        if self.walls is None:
+            return
+        self.require(
+            s.box is not None, "system.box", "slab walls need an explicit box (taller than 2 half_width)", "add box = [Lx, Ly(, Lz)]"
+        )
+        w, ly = self.walls, s.box[1]
+        self.require(
+            2 * w.half_width < ly and slab_half_height(self) > 0,
+            "walls.half_width",
+            f"{w.half_width} leaves no room: need 2 radius + 3 roughness < half_width < Ly/2 = {ly / 2:g}",
+            "change half_width or system.box[1]",
+        )
+
+    def langevin(self) -> LangevinConfig:
+        """The engine's configuration: its own sections, the WCA strength and the seed."""
+        return LangevinConfig(self.law, self.thermostat, self.active, self.bulk, epsilon=self.system.epsilon, seed=self.run.seed)
+
+    def as_dict(self) -> dict:
+        return dataclasses.asdict(self)
+
+
+def example_names() -> list[str]:
+    """Names of the bundled example configurations (``fricgen run NAME``)."""
+    return sorted(p.stem for p in EXAMPLES.glob("*.toml"))
+
+
+def resolve_source(source: str) -> Path:
+    """The TOML file ``source``, or the bundled example of that name (``passive``, ...)."""
+    path = Path(source)
+    if path.is_file():
+        return path
+    example = EXAMPLES / f"{source}.toml"
+    if path.name == source and example.is_file():
+        return example
+    raise ConfigError("CONFIG", f"no file {source!r} and no bundled example of that name", f"give a TOML file or one of {example_names()}")
+
+
+def parse_override(text: str) -> tuple[str, object]:
+    """``section.key=VALUE`` with VALUE in TOML syntax (a bare word is a string)."""
+    key, sep, value = text.partition("=")
+    if not sep or "." not in key:
+        raise ConfigError(f"--set {text}", "expected SECTION.KEY=VALUE", "for example --set system.n=256")
+    try:
+        parsed = tomllib.loads(f"value = {value}")["value"]
+    except tomllib.TOMLDecodeError:
+        parsed = value.strip()
+    return key.strip(), parsed
+
+
+def load_config(path: Path, overrides: list[tuple[str, object]] = ()) -> RunConfig:
+    """Read, override (``section.key`` paths) and validate a configuration (no files written)."""
+    try:
+        data = tomllib.loads(path.read_text())
+    except tomllib.TOMLDecodeError as error:
+        raise ConfigError(str(path), f"not valid TOML: {error}", "fix the syntax at that line") from error
+    for key, value in overrides:
+        *sections, name = key.split(".")
+        table = data
+        for section in sections:
+            table = table.setdefault(section, {})
+            if not isinstance(table, dict):
+                raise ConfigError(key, f"{section} is not a table", "override a key inside a section, e.g. system.n")
+        table[name] = value
+    config = structure(RunConfig, {"system": {}, **data})
+    config.langevin()  # checks the engine's own scalars (system.epsilon, run.seed) once
+    return config
+
+
+def check_fraction(key: str, fraction: float, s: System) -> None:
+    """A packing fraction below close packing (and the random-start limit), else ConfigError at ``key``."""
+    densest = CLOSE_PACKING[s.dimension]
+    if not 0 < fraction < densest:
+        raise ConfigError(key, f"{fraction:g} is impossible: close packing is {densest:.4f} in {s.dimension}-D", "give a smaller value")
+    limit = RANDOM_LIMIT[s.dimension]
+    if s.start == "random" and fraction > limit:
+        raise ConfigError(key, f"{fraction:g} is too dense for a random start (at most {limit})", 'use start = "lattice"')
+
+
+def slab_half_height(c: RunConfig) -> float:
+    """Half height of the region where particles start: the accessible slab less 3 roughness."""
+    return c.walls.half_width - 2 * c.system.radius - 3 * c.walls.roughness

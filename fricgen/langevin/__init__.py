@@ -1,0 +1,55 @@
+"""The Langevin engine: frictional spheres with thermal contact noise, in 2-D and 3-D.
+
+Public API::
+
+    from fricgen.langevin import LangevinConfig, Law, Thermostat, Particles, Simulation, lattice_state
+
+    particles = Particles.spheres(256)
+    state = lattice_state(particles, dim=2, fraction=0.6, seed=1)
+    config = LangevinConfig(law=Law("coulomb_newton", calculus="ito"), thermostat=Thermostat(dt=1e-3), seed=1)
+    Simulation(config, particles, state).run(20_000, every=100, observers=[Sampler(particles)])
+
+Modules: ``config`` (what to simulate), ``system`` (particles, states, initial configurations,
+walls), ``simulation`` (the run loop), ``integrator``, ``pairs``, ``neighbors`` and ``records``
+(the compiled step), ``analysis`` (T_eff, histograms, KL), ``trajectory`` (GSD, checkpoints),
+``thermostat_check`` (the statistical test of a law). Imports only the kernel layer, the RNG,
+fricgen.schema/errors and derive.calculus: never SymPy, the rods engine or the command line.
+"""
+
+from .analysis import Estimate, Sampler, block_estimate, kl_divergence, maxwell_boltzmann, scaled_components, temperatures, velocity_profile
+from .config import Active, Bulk, LangevinConfig, Law, Thermostat
+from .simulation import Simulation
+from .system import Particles, State, add_slab_walls, lattice_state, packing_box, thermal_state
+from .thermostat_check import CheckResult, PassiveCheck, passive_check, passive_run, thermostat_check
+from .trajectory import GSDWriter, load_checkpoint, save_checkpoint
+
+__all__ = [
+    "Active",
+    "Bulk",
+    "CheckResult",
+    "Estimate",
+    "GSDWriter",
+    "LangevinConfig",
+    "Law",
+    "Particles",
+    "PassiveCheck",
+    "Sampler",
+    "Simulation",
+    "State",
+    "Thermostat",
+    "add_slab_walls",
+    "block_estimate",
+    "kl_divergence",
+    "lattice_state",
+    "load_checkpoint",
+    "maxwell_boltzmann",
+    "packing_box",
+    "passive_check",
+    "passive_run",
+    "save_checkpoint",
+    "scaled_components",
+    "temperatures",
+    "thermal_state",
+    "thermostat_check",
+    "velocity_profile",
+]

@@ -1,0 +1,70 @@
+"""The records that carry a Langevin state and its parameters into the compiled engine.
+
+Named tuples of arrays and scalars with fixed Numba types, so that the compiled step functions
+take a handful of arguments and are compiled once for every law (the kernels enter beside them as
+first-class functions of the types in :mod:`fricgen.kernels`).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from numba import types
+
+_F, _I, _B = types.float64, types.int64, types.boolean
+_V, _M, _L = types.Array(_F, 1, "C"), types.Array(_F, 2, "C"), types.Array(_I, 1, "C")
+
+
+class Motion(NamedTuple):
+    """The dynamic arrays, (N, 3) positions, velocities, angular velocities and (N, 4) quaternions."""
+
+    position: np.ndarray
+    velocity: np.ndarray
+    omega: np.ndarray
+    orientation: np.ndarray
+
+
+class Bodies(NamedTuple):
+    """Per-particle radius and inverse mass and moment of inertia (0 for immobile particles)."""
+
+    radius: np.ndarray
+    inv_mass: np.ndarray
+    inv_inertia: np.ndarray
+
+
+class Dynamics(NamedTuple):
+    """Box lengths (Lz = 0 in 2-D), their inverses (0 beyond the dimension), bulk force, dimension and the parameters of one step: dt, kT,
+    solvent gamma and gamma_rot, active force F0, noise seed, the contact scheme (Calculus.index),
+    friction and contact-noise switches, neighbour-list skin and overlap limit (r / sigma_ik)."""
+
+    box: np.ndarray
+    inv_box: np.ndarray
+    bulk: np.ndarray
+    dims: int
+    dt: float
+    kT: float
+    gamma: float
+    gamma_rot: float
+    active: float
+    seed: int
+    scheme: int
+    friction: bool
+    noise: bool
+    skin: float
+    overlap_limit: float
+
+
+class Couplings(NamedTuple):
+    """Parameter values of the pair potential and of the friction law, and whether the law has a
+    weight w(r) (else w = 1)."""
+
+    potential: np.ndarray
+    law: np.ndarray
+    has_weight: bool
+
+
+MOTION = types.NamedUniTuple(_M, 4, Motion)
+BODIES = types.NamedUniTuple(_V, 3, Bodies)
+DYNAMICS = types.NamedTuple([_V, _V, _V, _I, _F, _F, _F, _F, _F, _I, _I, _B, _B, _F, _F], Dynamics)
+COUPLINGS = types.NamedTuple([_V, _V, _B], Couplings)

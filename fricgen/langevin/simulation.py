@@ -1,0 +1,87 @@
+"""A Langevin simulation of frictional spheres: a configuration on a state, advanced in chunks.
+
+The contact law's kernels come from ``generated/`` through the loader; the contact is integrated by
+the scheme of the calculus its noise amplitude D was derived for (fricgen.langevin.config.Law).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+from ..errors import ConfigError, SimulationError
+from ..kernels import load_law_kernels, load_potential, no_weight
+from . import integrator
+from .config import LangevinConfig
+from .records import Bodies, Couplings, Dynamics, Motion
+from .system import Particles, State
+
+
+class Simulation:
+    """Runs a configuration on a state (in place); ``run`` calls observers between chunks."""
+
+    def __init__(self, config: LangevinConfig, particles: Particles, state: State):
+        self.config, self.particles, self.state = config, particles, state
+        law = config.law
+        self.kernels = load_law_kernels(law.name)
+        self.contact = self.kernels.contact(law.calculus)  # raises for a calculus the law does not have
+        fixed = {"sigma": 1.0, "epsilon": config.epsilon}  # the engine scales distances by sigma_ik = R_i + R_k
+        params = dict(law.parameters) | {name: value for name, value in fixed.items() if name in self.kernels.parameter_names}
+        self.potential = load_potential(config.potential)
+        self.couplings = Couplings(np.array([config.epsilon, 1.0]), self.kernels.parameters(**params), self.kernels.has_weight)
+        self.neighbor_builds = 0
+        if state.dim == 2 and (state.position[:, 2].any() or config.bulk.vector[2]):
+            raise ConfigError("bulk.force", "2-D states have z = 0 and no bulk force along z", "give [Fx, Fy]")
+
+    @property
+    def scheme(self) -> str:
+        """The calculus whose scheme integrates the contact."""
+        return self.config.law.integrator.value
+
+    def dynamics(self) -> Dynamics:
+        """The step parameters of the compiled engine."""
+        c, s, t = self.config, self.state, self.config.thermostat
+        inv_box = np.array([1.0 / s.box[a] if a < s.dim else 0.0 for a in range(3)])
+        return Dynamics(s.box, inv_box, np.array(c.bulk.vector, dtype=float), s.dim, t.dt, t.kT, t.gamma, t.gamma_rot, c.active.force,
+                        c.seed, c.law.integrator.index, c.law.friction, c.law.contact_noise, c.skin, c.overlap_limit)  # fmt: skip
+
+    def advance(self, steps: int) -> None:
+        """Advance by ``steps`` compiled steps; raises SimulationError if the run blows up."""
+        c, p, s = self.config, self.particles, self.state
+        status, done, builds = integrator.advance(
+            Motion(s.position, s.velocity, s.omega, s.orientation),
+            Bodies(p.radius, p.inv_mass, p.inv_inertia),
+            self.dynamics(),
+            self.couplings,
+            self.potential.force,
+            self.contact,
+            self.kernels.module.weight if self.kernels.has_weight else no_weight,
+            s.step,
+            steps,
+        )
+        s.step += done
+        self.neighbor_builds += builds
+        dt = c.thermostat.dt
+        if status == integrator.NOT_FINITE:
+            raise SimulationError(
+                f"velocities became infinite or NaN at step {s.step} (t = {s.step * dt:g}): dt = {dt:g} is too large for "
+                "the forces or the friction stiffness (the contact mode relaxes at rate mu f/u; keep mu (f/u) dt well below 1)"
+            )
+        if status == integrator.OVERLAP:
+            raise SimulationError(
+                f"particles overlap (r < {c.overlap_limit} sigma) at step {s.step} (t = {s.step * dt:g}): the system exploded; "
+                "reduce dt or start from a configuration without overlaps"
+            )
+
+    def run(self, steps: int, every: int = 1000, observers: list[Callable[[Simulation], None]] = ()) -> None:
+        """Advance ``steps`` steps in chunks of ``every``, calling each observer after each chunk."""
+        if steps < 0 or every <= 0:
+            raise ConfigError("steps", f"must be >= 0 with chunks every > 0, got steps = {steps}, every = {every}", "fix the call")
+        done = 0
+        while done < steps:
+            chunk = min(every, steps - done)
+            self.advance(chunk)
+            done += chunk
+            for observe in observers:
+                observe(self)

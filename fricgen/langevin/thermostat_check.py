@@ -1,0 +1,130 @@
+"""The automated statistical test of a law's thermostat: a passive system at kT, measured.
+
+Runs N spheres (2-D area fraction 0.6 or 3-D volume fraction 0.3 by default, the paper's passive
+check) with WCA, the paper's solvent (gamma = 3 pi, gamma_R = pi; or none) and the law's friction
+with (or without) its noise, then fits T_eff of translation and rotation (block errors) and the KL
+divergence (F-41) of velocity and angular velocity components. Passed when both temperatures equal
+kT within ``z_limit`` standard errors and both KL divergences are below ``kl_limit``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import asdict, dataclass, field
+
+from ..schema import Section
+from .analysis import Sampler, block_estimate, kl_divergence
+from .config import LangevinConfig, Law, Thermostat
+from .simulation import Simulation
+from .system import Particles, lattice_state
+
+
+@dataclass(frozen=True)
+class PassiveCheck(Section):
+    """The set-up of a check: ``law`` and ``thermostat`` sections, dimension ``dim``, ``n`` spheres
+    (default 256 in 2-D, 216 in 3-D) at packing fraction ``phi`` (default 0.6 / 0.3), ``total_time``
+    in t0 (the first 10 % equilibrate from a lattice), noise ``seed``, the verdict's ``z_limit``
+    (standard errors) and ``kl_limit``, and a sample every ``every`` steps (default 0.05 t0)."""
+
+    law: Law
+    thermostat: Thermostat = field(default_factory=Thermostat)
+    dim: int = 2
+    n: int | None = None
+    phi: float | None = None
+    total_time: float = 40.0
+    seed: int = 1
+    z_limit: float = 4.0
+    kl_limit: float = 2e-3
+    every: int | None = None
+
+    def __post_init__(self):
+        self.require(self.dim in (2, 3), "dim", f"must be 2 or 3, got {self.dim}", "give 2 or 3")
+        self.require(self.n is None or self.n >= 2, "n", f"needs at least 2 spheres, got {self.n}", "give n >= 2")
+        self.require(self.phi is None or 0 < self.phi < 1, "phi", f"must be in (0, 1), got {self.phi}", "give a packing fraction")
+        self.require_positive("total_time", "z_limit", "kl_limit")
+        self.require(self.steps >= 20, "total_time", f"{self.total_time} t0 is under 20 steps of dt", "give a longer time")
+
+    @property
+    def steps(self) -> int:
+        return int(round(self.total_time / self.thermostat.dt))
+
+
+def passive_check(law: str, solvent: bool = True, **options) -> PassiveCheck:
+    """A PassiveCheck from flat options: the fields of PassiveCheck, of Law (calculus, contact_noise,
+    parameters, scheme, force_scheme) and of Thermostat (kT, dt); ``solvent=False`` sets
+    gamma = gamma_R = 0 (the friction thermostat alone)."""
+    sections = {Law: {"name": law}, Thermostat: {} if solvent else {"gamma": 0.0, "gamma_rot": 0.0}}
+    for section, values in sections.items():
+        names = {f.name for f in dataclasses.fields(section)}
+        values.update({key: options.pop(key) for key in list(options) if key in names})
+    return PassiveCheck(Law(**sections[Law]), Thermostat(**sections[Thermostat]), **options)
+
+
+@dataclass(frozen=True)
+class CheckResult:
+    law: str
+    calculus: str
+    scheme: str
+    dim: int
+    contact_noise: bool
+    T_trans: float
+    T_trans_err: float
+    T_rot: float
+    T_rot_err: float
+    kl_trans: float
+    kl_rot: float
+    passed: bool
+    steps: int
+    seconds: float
+
+    def as_dict(self) -> dict:
+        return asdict(self)
+
+
+def passive_run(check: PassiveCheck, observers: Sequence[Callable[[Simulation], None]] = ()) -> tuple[CheckResult, Sampler]:
+    """Run the passive check; return its result and the sampler (velocity and spin samples).
+
+    ``observers`` are called after every chunk of the equilibration and of the sampling."""
+    start = time.perf_counter()
+    kT, dt, dim = check.thermostat.kT, check.thermostat.dt, check.dim
+    particles = Particles.spheres(check.n or (256 if dim == 2 else 216))
+    state = lattice_state(particles, dim, check.phi or (0.6 if dim == 2 else 0.3), kT=kT, seed=check.seed)
+    simulation = Simulation(LangevinConfig(law=check.law, thermostat=check.thermostat, seed=check.seed), particles, state)
+    steps = check.steps
+    every = check.every or max(1, int(round(0.05 / dt)))
+    simulation.run(steps // 10, every=steps // 10 or 1, observers=observers)  # equilibration from the lattice start
+    sampler = Sampler(particles)
+    simulation.run(steps - steps // 10, every=every, observers=[sampler, *observers])
+    trans, rot = block_estimate(sampler.trans), block_estimate(sampler.rot)
+    kl_trans, kl_rot = kl_divergence(sampler.scaled_velocities()), kl_divergence(sampler.scaled_spins())
+    passed = (
+        abs(trans.mean - kT) <= check.z_limit * trans.error
+        and abs(rot.mean - kT) <= check.z_limit * rot.error
+        and kl_trans < check.kl_limit
+        and kl_rot < check.kl_limit
+    )
+    result = CheckResult(
+        check.law.name,
+        check.law.calculus,
+        simulation.scheme,
+        dim,
+        check.law.contact_noise,
+        trans.mean,
+        trans.error,
+        rot.mean,
+        rot.error,
+        kl_trans,
+        kl_rot,
+        bool(passed),
+        steps,
+        time.perf_counter() - start,
+    )
+    return result, sampler
+
+
+def thermostat_check(law: str, **options) -> CheckResult:
+    """Run the passive check (flat options as in :func:`passive_check`) and return temperatures,
+    errors, KL divergences and the verdict."""
+    return passive_run(passive_check(law, **options))[0]

@@ -1,0 +1,123 @@
+"""Trajectories (GSD, HOOMD schema: freud, OVITO, AMEP read them) and bit-exact checkpoints.
+
+GSD frames hold positions (in the HOOMD convention [-L/2, L/2)), velocities, orientations (unit
+quaternions), types ("A" mobile, "W" wall), diameters, masses and moments of inertia, the box
+(Lz = 0 and dimensions = 2 in 2-D), and the angular velocities as the per-particle log quantity
+``log/particles/angular_velocity`` (lab frame). Frames are flushed as they are written, so a run
+that stops keeps a valid file with every frame written so far.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import gsd.fl
+import gsd.hoomd
+import numpy as np
+
+from ..schema import structure
+from .config import LangevinConfig
+from .simulation import Simulation
+from .system import Particles, State
+
+
+class GSDWriter:
+    """Observer for Simulation.run that appends a frame each time it is called."""
+
+    def __init__(self, path: str | Path, particles: Particles, mode: str = "w"):
+        self.path = Path(path)
+        self.particles = particles
+        self.file = gsd.hoomd.open(str(self.path), mode)
+
+    def frame(self, state: State) -> gsd.hoomd.Frame:
+        p = self.particles
+        frame = gsd.hoomd.Frame()
+        frame.configuration.step = state.step
+        frame.configuration.dimensions = state.dim
+        frame.configuration.box = [*state.box.tolist(), 0.0, 0.0, 0.0]
+        frame.particles.N = p.radius.size
+        frame.particles.types = ["A", "W"]
+        frame.particles.typeid = np.where(p.mobile, 0, 1).astype(np.uint32)
+        half = np.where(state.box > 0, state.box / 2, 0.0)
+        frame.particles.position = (state.position - half).astype(np.float32)
+        frame.particles.velocity = state.velocity.astype(np.float32)
+        frame.particles.orientation = state.orientation.astype(np.float32)
+        frame.particles.diameter = (2 * p.radius).astype(np.float32)
+        frame.particles.mass = p.mass.astype(np.float32)
+        frame.particles.moment_inertia = np.repeat(p.inertia[:, None], 3, axis=1).astype(np.float32)
+        frame.log["particles/angular_velocity"] = state.omega.astype(np.float32)
+        return frame
+
+    def __call__(self, simulation: Simulation) -> None:
+        self.file.append(self.frame(simulation.state))
+        self.file.flush()
+
+    def close(self) -> None:
+        self.file.close()
+
+    def __enter__(self) -> GSDWriter:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+def truncate_trajectory(path: str | Path, step: int) -> None:
+    """Drop the frames after ``step`` (to resume from an earlier checkpoint), rewriting the file
+    atomically only if there are any."""
+    path = Path(path)
+    name = "configuration/step"  # omitted where it equals frame 0's (or, in frame 0, the default 0)
+    with gsd.fl.open(str(path), "r") as handle:
+        stored = [int(handle.read_chunk(i, name)[0]) if handle.chunk_exists(i, name) else None for i in range(handle.nframes)]
+    steps = [s if s is not None else (stored[0] or 0) for s in stored]
+    keep = sum(s <= step for s in steps)
+    if keep < len(steps):
+        temporary = path.with_name(path.name + ".tmp")
+        with gsd.hoomd.open(str(path), "r") as old, gsd.hoomd.open(str(temporary), "w") as new:
+            for frame in old[:keep]:
+                new.append(frame)
+        os.replace(temporary, path)
+
+
+def save_checkpoint(path: str | Path, simulation: Simulation) -> Path:
+    """Everything needed to continue bit-identically (state, particles, configuration), atomically."""
+    path = Path(path)
+    s, p = simulation.state, simulation.particles
+    temporary = path.with_name(path.name + ".tmp")
+    with open(temporary, "wb") as handle:
+        np.savez(
+            handle,
+            position=s.position,
+            velocity=s.velocity,
+            omega=s.omega,
+            orientation=s.orientation,
+            box=s.box,
+            dim=s.dim,
+            step=s.step,
+            radius=p.radius,
+            mass=p.mass,
+            inertia=p.inertia,
+            mobile=p.mobile,
+            config=json.dumps(simulation.config.as_dict()),
+        )
+    os.replace(temporary, path)
+    return path
+
+
+def load_checkpoint(path: str | Path) -> Simulation:
+    """A Simulation that continues exactly where :func:`save_checkpoint` left it."""
+    with np.load(Path(path)) as data:
+        config = structure(LangevinConfig, json.loads(str(data["config"])), "checkpoint")
+        particles = Particles(data["radius"], data["mass"], data["inertia"], data["mobile"])
+        state = State(
+            data["position"].copy(),
+            data["velocity"].copy(),
+            data["omega"].copy(),
+            data["orientation"].copy(),
+            data["box"].copy(),
+            int(data["dim"]),
+            int(data["step"]),
+        )
+    return Simulation(config, particles, state)

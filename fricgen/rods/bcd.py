@@ -1,0 +1,266 @@
+"""Brownian cluster dynamics (BCD) of hard rods on a ring (Antonov et al. 2022, B-1..19).
+
+Overdamped rods of length sigma, dx_i/dt = mu F_i + sqrt(2D) xi_i (B-1, B-27), on a periodic line
+of length L, or on an open line for L = inf (the gap after the last rod is infinite). Per step dt:
+
+1. trial forces F_i = f(x_i) + F_drive + sum_j f_int(x_i, x_j) + sqrt(2D/dt)/mu N_i (B-11, B-28),
+   f from the external potential's force_field kernel (one call per step for all rods),
+   with N_i a standard normal keyed on (seed, step, replica, i) (rng.ziggurat_normal: counter-based,
+   so a run is bit-identical in any chunking and on any number of threads);
+2. cluster analysis: each run of rods in contact is split recursively at the cut with the largest
+   positive difference of mean forces (right minus left); pieces that cannot split move with
+   mu times their mean force (B-4, B-5, B-12);
+3. event-driven propagation: the earliest collision inside the step merges the two clusters
+   perfectly inelastically, velocity (m v_left + n v_right)/(m + n) (B-13..18), until t + dt (B-19).
+   Collisions wait in a heap and positions are extrapolated from t = 0, so an event costs
+   O(cluster size + log N), not O(N).
+
+Continuous pair forces act between neighbours (f_int of range sigma + eps < 2 sigma, e.g. the
+sticky force B-32). Positions are kept unwrapped and ordered (x_0 < ... < x_{N-1} < x_0 + L): rods
+never pass each other. Sampling after each step adds the rods of every period to histograms over
+one wavelength (B-24, B-25) and histograms the gaps r - sigma of neighbours at the left rod's bin:
+exact contacts (left by merging) apart, positive gaps in bins of width w (B-26; see fricgen.rods.simulation for the
+estimate of the contact density); the same pass checks that no two rods overlap.
+
+The physics: docs/physics.md#brownian-cluster-dynamics.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+from numba import types
+
+from ..kernels import FIELD_KERNEL, SCALAR_KERNEL
+from ..rng import BCD, fold_key, stream_key, ziggurat_normal
+from .records import COUNTS, RING, STEPPING
+
+CONTACT_TOLERANCE = 1e-12  # relative to sigma: gaps below it are contacts
+OK, PASSED, ALL_IN_CONTACT = 0, 1, 2
+
+
+@numba.njit(inline="always", cache=True)
+def _gap(x, i, length):
+    """x_{i+1} - x_i around the ring."""
+    j = i + 1
+    return x[j] - x[i] if j < x.size else x[0] + length - x[i]
+
+
+@numba.njit(cache=True)
+def _cluster_velocities(forces, members, count, mu, v, stack, prefix):
+    """Split the contact cluster members[0:count] recursively (B-4, B-5) and set v = mu <F>."""
+    prefix[0] = 0.0
+    for k in range(count):
+        prefix[k + 1] = prefix[k] + forces[members[k]]
+    stack[0, 0], stack[0, 1] = 0, count
+    top = 1
+    while top > 0:
+        top -= 1
+        a, b = stack[top, 0], stack[top, 1]
+        best, cut = 0.0, -1
+        for j in range(a + 1, b):
+            difference = (prefix[b] - prefix[j]) / (b - j) - (prefix[j] - prefix[a]) / (j - a)
+            if difference > best:
+                best, cut = difference, j
+        if cut < 0:
+            velocity = mu * (prefix[b] - prefix[a]) / (b - a)
+            for k in range(a, b):
+                v[members[k]] = velocity
+        else:
+            stack[top, 0], stack[top, 1] = a, cut
+            stack[top + 1, 0], stack[top + 1, 1] = cut, b
+            top += 2
+
+
+@numba.njit(inline="always", cache=True)
+def _push(heap_t, heap_i, size, t, i):
+    """Insert event (t, i) into the binary min-heap heap_t[0:size]; returns the new size."""
+    k = size
+    while k > 0:
+        parent = (k - 1) >> 1
+        if heap_t[parent] <= t:
+            break
+        heap_t[k], heap_i[k] = heap_t[parent], heap_i[parent]
+        k = parent
+    heap_t[k], heap_i[k] = t, i
+    return size + 1
+
+
+@numba.njit(inline="always", cache=True)
+def _pop(heap_t, heap_i, size):
+    """Remove the earliest event of the heap; returns (t, i, new size)."""
+    t, i = heap_t[0], heap_i[0]
+    size -= 1
+    last_t, last_i = heap_t[size], heap_i[size]
+    k = 0
+    while True:
+        child = 2 * k + 1
+        if child >= size:
+            break
+        if child + 1 < size and heap_t[child + 1] < heap_t[child]:
+            child += 1
+        if heap_t[child] >= last_t:
+            break
+        heap_t[k], heap_i[k] = heap_t[child], heap_i[child]
+        k = child
+    heap_t[k], heap_i[k] = last_t, last_i
+    return t, i, size
+
+
+@numba.njit(cache=True)
+def _rebuild(heap_t, heap_i, when):
+    """A heap of the valid events only (time when[i] >= 0 for pair i); returns its size."""
+    size = 0
+    for i in range(when.size):
+        if when[i] >= 0.0:
+            size = _push(heap_t, heap_i, size, when[i], i)
+    return size
+
+
+@numba.njit(cache=True)
+def _schedule(x, v, i, now, length, sigma, dt, events, size):
+    """If rods i and i + 1 approach and touch before dt, at t = (x_{i+1} - x_i - sigma) / (v_i - v_{i+1})
+    (B-14; x: positions extrapolated to t = 0, x_i(t) = x_i + v_i t), push the event at
+    when[i] = max(t, now); else when[i] = -1. Returns the heap size; events = (heap_t, heap_i, when)."""
+    heap_t, heap_i, when = events
+    closing = v[i] - v[i + 1 if i + 1 < x.size else 0]
+    gap = _gap(x, i, length) - sigma
+    when[i] = -1.0
+    if closing > 0.0 and gap < closing * dt:
+        if size == heap_t.size:  # full of superseded events
+            size = _rebuild(heap_t, heap_i, when)
+        when[i] = max(gap / closing, now)
+        size = _push(heap_t, heap_i, size, when[i], i)
+    return size
+
+
+@numba.njit(cache=True)
+def _step(x, forces, v, length, sigma, mu, dt, clusters, events):
+    """Cluster analysis, then event-driven propagation over dt; returns OK or ALL_IN_CONTACT.
+
+    Work arrays: clusters = (members, stack, prefix), events = (heap_t, heap_i, when).
+    During the step x holds the positions extrapolated to t = 0 (rod i is at x_i + v_i t), so that a
+    merge moves only the rods of its two clusters. Collisions wait in a heap; when[i] is the valid
+    time of pair i (-1: none), entries that disagree with it are superseded."""
+    members, stack, prefix = clusters
+    heap_t, heap_i, when = events
+    n = x.size
+    tolerance = CONTACT_TOLERANCE * sigma
+    start = -1
+    for i in range(n):
+        if _gap(x, i, length) - sigma > tolerance:
+            start = i
+            break
+    if start < 0:
+        return ALL_IN_CONTACT
+    count, i = 0, start
+    for _ in range(n):
+        i = i + 1 if i + 1 < n else 0
+        members[count] = i
+        count += 1
+        if _gap(x, i, length) - sigma > tolerance:  # i ends the cluster members[0:count]
+            if count == 1:
+                v[i] = mu * forces[i]
+            else:
+                _cluster_velocities(forces, members, count, mu, v, stack, prefix)
+            count = 0
+    size = 0
+    for i in range(n):
+        when[i] = -1.0
+        if _gap(x, i, length) - sigma < (v[i] - v[i + 1 if i + 1 < n else 0]) * dt:  # necessary; rarely true
+            size = _schedule(x, v, i, 0.0, length, sigma, dt, events, size)
+    while size > 0:
+        now, left, size = _pop(heap_t, heap_i, size)
+        if when[left] != now:  # superseded
+            continue
+        # merge the cluster ending at `left` with the one starting at `right` (B-17)
+        right = left + 1 if left + 1 < n else 0
+        a, b, m, k = left, right, 1, 1
+        while m + k < n:
+            c = a - 1 if a > 0 else n - 1
+            if v[c] != v[left] or _gap(x, c, length) - sigma > tolerance:
+                break
+            a, m = c, m + 1
+        while m + k < n:
+            c = b + 1 if b + 1 < n else 0
+            if v[c] != v[right] or _gap(x, b, length) - sigma > tolerance:
+                break
+            b, k = c, k + 1
+        merged = (m * v[left] + k * v[right]) / (m + k)
+        c = a
+        for _ in range(m + k):
+            x[c] += (v[c] - merged) * now  # the same x_c(now), now moving with `merged`
+            v[c] = merged
+            c = c + 1 if c + 1 < n else 0
+        when[left] = -1.0
+        if m + k < n:
+            size = _schedule(x, v, a - 1 if a > 0 else n - 1, now, length, sigma, dt, events, size)
+            size = _schedule(x, v, b, now, length, sigma, dt, events, size)
+    for i in range(n):
+        x[i] += v[i] * dt
+    return OK
+
+
+@numba.njit(cache=True)
+def _sample(x, ring, gap_width, rho_counts, gap_counts):
+    """Add the rods to rho_counts[bin] and their gaps to gap_counts[bin, k] (see advance_rods);
+    returns PASSED if two rods overlap, else OK."""
+    length, sigma, wavelength = ring.length, ring.sigma, ring.wavelength
+    n, bins, gap_bins = x.size, rho_counts.size, gap_counts.shape[1]
+    per_wavelength, per_gap, contact = 1.0 / wavelength, 1.0 / gap_width, CONTACT_TOLERANCE * sigma
+    status = OK
+    for i in range(n):
+        phase = x[i] * per_wavelength
+        b = int((phase - math.floor(phase)) * bins)
+        b = b if b < bins else 0
+        rho_counts[b] += 1.0
+        gap = _gap(x, i, length) - sigma
+        if gap < -1e-9 * sigma:
+            status = PASSED
+        k = 0 if gap <= contact else 1 + int(min(gap * per_gap, gap_bins))  # inf: after the last rod of an open line
+        if k < gap_bins:
+            gap_counts[b, k] += 1.0
+    return status
+
+
+@numba.njit(types.int64(types.Array(types.float64, 2, "C"), RING, STEPPING, FIELD_KERNEL, SCALAR_KERNEL, COUNTS), parallel=True, cache=True)
+def advance_rods(positions, ring, stepping, external, pair_force, counts):
+    """Advance every replica (row of positions) by ``stepping.steps`` BCD steps, sampling after each.
+
+    ``external`` is the field's force_field(xs, params, out), ``pair_force`` the neighbour force
+    f(r, params) on the right rod. counts = (rho_counts, gap_counts): rho_counts[r, b] accumulates
+    rods per bin of one wavelength; gap_counts[r, b, k] the left rods of pairs in exact contact
+    (k = 0) and with gap r - sigma in [(k - 1) w, k w) (k >= 1), w = gap_width. Returns OK or a
+    failure status (PASSED: rods overlapped; ALL_IN_CONTACT: no gap left on the ring).
+    """
+    rho_counts, gap_counts = counts
+    length, sigma, mu, dt = ring.length, ring.sigma, ring.mu, stepping.dt
+    replicas, n = positions.shape
+    status = np.zeros(replicas, dtype=np.int64)
+    noise = math.sqrt(2.0 * ring.diffusion / dt) / mu
+    for r in numba.prange(replicas):
+        x = positions[r]
+        forces, v, prefix, when = np.empty(n), np.empty(n), np.empty(n + 1), np.empty(n)
+        members = np.empty(n, dtype=np.int64)
+        stack = np.empty((2 * n + 2, 2), dtype=np.int64)
+        heap_t, heap_i = np.empty(3 * n), np.empty(3 * n, dtype=np.int64)  # n, then 2 per merge (< n merges)
+        for s in range(stepping.steps):
+            key = fold_key(stream_key(stepping.seed, stepping.first_step + s, BCD), r)
+            external(x, ring.field_params, forces)
+            for i in range(n):
+                forces[i] += ring.drive + noise * ziggurat_normal(key, i)
+            if ring.pair_on:
+                for i in range(n):
+                    gap = _gap(x, i, length)
+                    if gap < sigma + ring.pair_range:
+                        f = pair_force(gap, ring.pair_params)  # on the right rod, from the left one (B-32)
+                        forces[i + 1 if i + 1 < n else 0] += f
+                        forces[i] -= f
+            status[r] = _step(x, forces, v, length, sigma, mu, dt, (members, stack, prefix), (heap_t, heap_i, when))
+            if status[r] == OK:
+                status[r] = _sample(x, ring, stepping.gap_width, rho_counts[r], gap_counts[r])
+            if status[r] != OK:
+                break
+    return status.max()

@@ -1,0 +1,55 @@
+"""BCD against the exact theory: the exact profile of the model a RodConfig simulates, and the
+deviations of a measured profile from it (docs/physics.md#exact-theory-of-rods)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import ConfigError
+from .config import RodConfig
+from .interactions import field_energy, on_arrays, pair_kernels
+from .simulation import RodProfiles
+from .theory import HARD_RODS, Neighbours, RodProfile, rod_profile
+
+
+def exact_profile(config: RodConfig) -> RodProfile:
+    """The exact equilibrium (fricgen.rods.theory) of the model a RodConfig simulates, on a ring of its length;
+    the grid (600 to 2400 points per wavelength) has sigma on a grid point."""
+    c = config.model
+    if c.open_line:
+        raise ConfigError("model.length", "the exact theory is for a ring of finite length, not an open line", "give a finite length")
+    ratio = c.sigma / c.wavelength
+    points = next((m for m in range(600, 2401) if abs(ratio * m - round(ratio * m)) < 1e-9), None)
+    if points is None:
+        raise ConfigError("model.sigma", f"sigma / lambda = {ratio} is not a fraction k / m with 600 <= m <= 2400", "round sigma")
+    neighbours = Neighbours(c.gamma, c.eps, c.p) if c.gamma > 0 else HARD_RODS
+    if c.pair is not None:
+        module, params, reach = pair_kernels(c)
+        neighbours = Neighbours(pair=on_arrays(module.energy, params), pair_range=reach)
+    return rod_profile(field_energy(c), c.sigma, c.mean_density, c.wavelength, c.kT, neighbours, points, ring_length=c.length)
+
+
+def deviations(measured: RodProfiles, exact: RodProfile, contact: bool = True) -> dict[str, float | None]:
+    """Profile vs exact bin means: max |d rho|, L1 / rho_bar, chi^2 per bin. With ``contact`` (hard
+    rods): chi^2 per bin of rho_2 at contact and the ratio measured / exact (with its standard error),
+    over the bins where the exact contact density exceeds 30 % of its maximum."""
+    bins = measured.x.size
+    rho = exact.bin_means(bins)
+    result = {
+        "max_abs_dev": float(np.max(np.abs(measured.rho - rho))),
+        "l1_dev_over_rho": float(np.mean(np.abs(measured.rho - rho)) / rho.mean()),
+        "chi2_per_dof": float(np.mean(((measured.rho - rho) / measured.rho_err) ** 2)),
+    }
+    if contact:
+        expected = exact.bin_means(bins, "contact")
+        where = (expected > 0.3 * expected.max()) & np.isfinite(measured.contact) & (measured.contact_err > 0)
+        figures = (None, None, None)  # too few pairs beyond the BCD layer to measure
+        if where.sum() >= 2:
+            total = expected[where].sum()
+            figures = (
+                float(np.mean(((measured.contact - expected) / measured.contact_err)[where] ** 2)),
+                float(measured.contact[where].sum() / total),
+                float(np.sqrt(np.sum(measured.contact_err[where] ** 2)) / total),
+            )
+        result.update(zip(("contact_chi2_per_dof", "contact_ratio", "contact_ratio_err"), figures))
+    return result

@@ -1,0 +1,135 @@
+"""Typed configuration sections: frozen dataclasses that check their own values once, on creation.
+
+A section is what a TOML table, a command-line flag group and an engine's configuration have in
+common: :class:`Section` gives it one key prefix for error messages (``thermostat.dt``),
+:func:`structure` builds it (and nested sections) from plain data such as a TOML table or a JSON
+checkpoint with one-line errors for unknown keys and wrong types, and :func:`flat_fields` lists
+its fields for command-line flags, so flags, files and engines cannot disagree on a default.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import difflib
+import math
+import typing
+from types import UnionType
+from typing import Any, ClassVar
+
+from .errors import ConfigError
+
+
+class Section:
+    """Mixin of a frozen dataclass section; ``SECTION`` is its key prefix (``""`` at the top)."""
+
+    SECTION: ClassVar[str] = ""
+
+    def key(self, name: str) -> str:
+        """The full key of field ``name``: a field's ``key`` metadata, else ``SECTION.name``."""
+        fields = {f.name: f for f in dataclasses.fields(self)}
+        if name in fields and "key" in fields[name].metadata:
+            return fields[name].metadata["key"]
+        return f"{self.SECTION}.{name}" if self.SECTION else name
+
+    def require(self, condition: bool, name: str, problem: str, fix: str) -> None:
+        """Raise ConfigError(key of ``name``, problem, fix) unless ``condition``."""
+        if not condition:
+            raise ConfigError(self.key(name), problem, fix)
+
+    def require_positive(self, *names: str) -> None:
+        """Each named field is a finite number > 0."""
+        for name in names:
+            value = getattr(self, name)
+            self.require(math.isfinite(value) and value > 0, name, f"must be positive and finite, got {value}", "give a positive value")
+
+    def require_nonnegative(self, *names: str) -> None:
+        """Each named field is a finite number >= 0."""
+        for name in names:
+            value = getattr(self, name)
+            self.require(math.isfinite(value) and value >= 0, name, f"must be >= 0 and finite, got {value}", "give 0 or more")
+
+
+def _describe(hint) -> tuple[str, str]:
+    """What a value of type ``hint`` is, and how TOML writes one."""
+    if typing.get_origin(hint) is tuple:
+        return ("a list of numbers", "[1.0, 2.0]") if typing.get_args(hint)[0] is float else ("a list of strings", '["temperatures"]')
+    if typing.get_origin(hint) is dict:
+        return "a table of numbers", "a table with NAME = 1.0 lines"
+    return {int: ("an integer", "64"), float: ("a number", "0.6"), bool: ("true or false", "true"), str: ("a string", '"ito" (quoted)')}[
+        hint
+    ]
+
+
+def _strip_optional(hint):
+    """X for ``X | None`` (None is a default that TOML cannot write), else the hint itself."""
+    if typing.get_origin(hint) is UnionType:
+        return next(arg for arg in typing.get_args(hint) if arg is not type(None))
+    return hint
+
+
+def coerce(key: str, value: Any, hint) -> Any:
+    """``value`` as the type ``hint`` (int, float, bool, str, tuple[float|str, ...], dict[str, float],
+    or a Section dataclass built from a table) or ConfigError naming ``key``."""
+    if value is None and _strip_optional(hint) is not hint:
+        return None  # an optional field left at None (JSON null)
+    hint = _strip_optional(hint)
+    origin = typing.get_origin(hint)
+    if dataclasses.is_dataclass(hint) and isinstance(value, dict):
+        return structure(hint, value, key)
+    if origin is tuple and isinstance(value, list | tuple):
+        item = typing.get_args(hint)[0]
+        return tuple(coerce(f"{key}[{i}]", v, item) for i, v in enumerate(value))
+    if origin is dict and isinstance(value, dict):
+        return {name: coerce(f"{key}.{name}", v, float) for name, v in value.items()}
+    if hint is float and isinstance(value, int | float) and not isinstance(value, bool):
+        return float(value)
+    if origin is None and not dataclasses.is_dataclass(hint) and isinstance(value, hint) and (hint is bool or not isinstance(value, bool)):
+        return value
+    shown = f"{value!r} ({type(value).__name__})" if not isinstance(value, dict) else "a table"
+    if dataclasses.is_dataclass(hint):
+        raise ConfigError(key, f"must be a table, got {shown}", f"write it as a section [{key}] with key = value lines")
+    what, example = _describe(hint)
+    raise ConfigError(key, f"must be {what}, got {shown}", f"write it like {example}")
+
+
+def unknown_key(key: str, name: str, known: list[str]) -> ConfigError:
+    """The error of an unknown key, with the likely one."""
+    close = difflib.get_close_matches(name, known, n=1)
+    hint = f"did you mean {close[0]!r}? " if close else ""
+    return ConfigError(key, "unknown key", f"{hint}known keys here: {', '.join(known)}")
+
+
+def structure(cls: type, data: dict, prefix: str = "") -> Any:
+    """An instance of the dataclass ``cls`` from the table ``data`` (missing keys take defaults)."""
+    hints = typing.get_type_hints(cls)
+    names = [f.name for f in dataclasses.fields(cls)]
+    for name in data:
+        if name not in names:
+            raise unknown_key(f"{prefix}.{name}" if prefix else f"[{name}]", name, names)
+    for f in dataclasses.fields(cls):
+        if f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING and f.name not in data:
+            raise ConfigError(f"{prefix}.{f.name}", "missing", f"[{prefix}] needs {f.name} = ...")
+    return cls(**{name: coerce(f"{prefix}.{name}" if prefix else name, value, hints[name]) for name, value in data.items()})
+
+
+def flat_fields(*classes: type) -> dict[str, tuple[type, dataclasses.Field]]:
+    """The fields of several sections by name (for command-line flags): name -> (section, field)."""
+    fields: dict[str, tuple[type, dataclasses.Field]] = {}
+    for cls in classes:
+        for f in dataclasses.fields(cls):
+            if f.name in fields:
+                raise TypeError(f"field {f.name!r} of {cls.__name__} is also in {fields[f.name][0].__name__}")
+            fields[f.name] = (cls, f)
+    return fields
+
+
+def differences(wanted: Section, stored: Section) -> list[tuple[str, Any, Any]]:
+    """(key, wanted value, stored value) of every field that differs, nested sections by their keys."""
+    found = []
+    for f in dataclasses.fields(wanted):
+        a, b = getattr(wanted, f.name), getattr(stored, f.name)
+        if isinstance(a, Section) and type(a) is type(b):
+            found += differences(a, b)
+        elif a != b:
+            found.append((wanted.key(f.name), a, b))
+    return found
