@@ -191,8 +191,10 @@ def _correlate(row: np.ndarray, values: np.ndarray, transpose: bool = False) -> 
 
 
 def _perron(apply, size: int, start: np.ndarray | None) -> tuple[float, np.ndarray]:
+    """Perron root and vector (sum 1) of a positive operator; ARPACK starts from ``start`` or, to be
+    reproducible bit for bit, from the uniform vector (not from a random one)."""
     operator = LinearOperator((size, size), matvec=apply, dtype=float)
-    value, vector = eigs(operator, k=1, which="LR", v0=start, tol=0)
+    value, vector = eigs(operator, k=1, which="LR", v0=np.ones(size) if start is None else start, tol=0)
     vector = np.real(vector[:, 0])
     return float(np.real(value[0])), vector / vector.sum()
 
