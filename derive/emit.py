@@ -11,7 +11,9 @@ Layout written by :func:`generate`::
 Kernel signatures are uniform so that engines can use any law: ``friction(u, w, r, params)`` and
 ``noise_amplitude_<c>(u, w, r, mu, kT, params)`` with params the parameter values in the order of the
 module's ``PARAMETERS``. Files are rewritten only when their content changes (Numba's cache is
-keyed on the file's timestamp).
+keyed on the file's timestamp), atomically (a temporary file, then ``os.replace``). A law's kernels
+carry the hash of the bytes its law was read from (``FrictionLaw.source_hash``): a law file edited
+during a generation leaves kernels that the loader refuses as stale.
 """
 
 from __future__ import annotations
@@ -25,7 +27,8 @@ from sympy.integrals.quadrature import gauss_legendre
 
 from . import potentials
 from .errors import DeriveError
-from .lawdata import CATALOGUE, GENERATOR_VERSION, potential_source_hash, read_law_data, source_hash
+from .expressions import time_limit
+from .lawdata import CATALOGUE, GENERATOR_VERSION, potential_source_hash, write_text_atomic
 from .lawdata import POTENTIALS as POTENTIALS_SOURCE
 from .laws import FrictionLaw, load_law
 from .noise import NoiseModel, branches, derive_noise
@@ -59,6 +62,9 @@ INDENT = "    "
 
 #: Gauss–Legendre order and panel refinement of the integral-form kernels (see _TAIL_KERNEL).
 QUADRATURE_ORDER = 10
+#: Wall-time limit (seconds) of the derivation and verification of one law in one calculus: SymPy's
+#: cost grows steeply with f (a polynomial of degree 30 takes minutes), and no size limit bounds it.
+DERIVATION_TIME_LIMIT = 600.0
 
 
 class GenerationError(DeriveError, RuntimeError):
@@ -183,7 +189,7 @@ def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, sou
     forms = ", ".join(f"{c} ({'closed form' if m.closed_form else 'integral (F-22), quadrature'})" for c, m in models.items())
     header = _header(
         [
-            f"Source: law '{law.name}' ({source}), f = {law.source}",
+            f"Source: law '{law.name}' ({source}), f = {' '.join(law.source.split())}",
             f"Calculi: {forms}",
             f"Source hash: {digest}",
             f"Regenerate: fricgen generate {law.name}",
@@ -318,20 +324,23 @@ def _package(doc: str) -> str:
 
 
 def write_if_changed(path: Path, text: str) -> Written:
-    """Write ``text`` unless the file already holds exactly that (keeps Numba's cache valid)."""
-    if path.exists() and path.read_text() == text:
+    """Write ``text`` atomically unless the file already holds exactly that (keeps Numba's cache valid)."""
+    if path.exists() and path.read_bytes() == text.encode():
         return Written(path, "unchanged")
     path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text)
+    write_text_atomic(path, text)
     return Written(path, "written")
 
 
-def verified_models(law: FrictionLaw) -> tuple[dict[str, NoiseModel], list[Report]]:
-    """Derive and verify the law for each of its calculi; raise GenerationError on any failure."""
+def verified_models(law: FrictionLaw, seconds: float | None = DERIVATION_TIME_LIMIT) -> tuple[dict[str, NoiseModel], list[Report]]:
+    """Derive and verify the law for each of its calculi, each within ``seconds`` (None: no limit);
+    raise GenerationError on any failure."""
     models, reports = {}, []
     for c in law.calculi:
-        model = derive_noise(law, c)
-        report = verify(model)
+        slow = GenerationError(f"law {law.name} ({c}): derivation and verification took over {seconds} s: nothing emitted")
+        with time_limit(seconds, slow):
+            model = derive_noise(law, c)
+            report = verify(model)
         reports.append(report)
         if not report.verified:
             failed = [k for k, v in report.checks.items() if not v]
@@ -377,8 +386,7 @@ def generate(names: list[str] | None = None, catalogue: Path = CATALOGUE, output
         law = load_law(path)
         models, law_reports = verified_models(law)
         reports += law_reports
-        digest = source_hash(read_law_data(path), potentials.SOURCE)
-        text = law_module(law, models, digest, f"derive/catalogue/{name}.toml")
+        text = law_module(law, models, law.source_hash, f"derive/catalogue/{name}.toml")
         written.append(write_if_changed(output / "laws" / f"{name}.py", text))
     if names is None:
         for orphan in sorted((output / "laws").glob("*.py")):

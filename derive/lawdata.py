@@ -1,4 +1,4 @@
-"""Law files as plain data, without SymPy: reading, and the source hashes of laws and potentials.
+"""Law files as plain data, without SymPy: reading, the schema, and the source hashes of laws and potentials.
 
 The runtime's kernel loader uses this module to detect stale kernels (a law file or
 derive/potentials.py edited after the kernels were generated) without importing SymPy, so it must
@@ -10,9 +10,12 @@ from __future__ import annotations
 
 import hashlib
 import json
+import os
+import tempfile
 import tomllib
 from pathlib import Path
 
+from .calculus import CALCULI
 from .errors import DeriveError
 
 #: Version of the code generator; part of every source hash, bump when emitted code changes.
@@ -21,6 +24,15 @@ GENERATOR_VERSION = 1
 CATALOGUE = Path(__file__).with_name("catalogue")
 #: The source of the potentials (derive.potentials), hashed as bytes by potential_source_hash.
 POTENTIALS = Path(__file__).with_name("potentials.py")
+#: Largest law file read, in bytes (a law is a few hundred bytes; its expressions at most 2000 characters).
+MAX_LAW_FILE = 64 * 1024
+
+#: The keys of a law file and their TOML types; name and friction are required.
+LAW_KEYS = {"name": str, "friction": str, "weight": str, "calculi": list, "description": str, "reference": str, "parameters": dict}
+REQUIRED_KEYS = ("name", "friction")
+#: The keys of a parameter's table; default is required.
+PARAMETER_KEYS = {"default": (int, float), "unit": str, "description": str}
+_KINDS = {str: "a string", list: "a list of strings", dict: "a table", (int, float): "a number"}
 
 
 class LawFileError(DeriveError, ValueError):
@@ -28,14 +40,89 @@ class LawFileError(DeriveError, ValueError):
 
 
 def read_law_data(path: str | Path) -> dict:
-    """The TOML table of a law file."""
+    """The TOML table of a law file: its bytes read once, as UTF-8 text (LawFileError otherwise)."""
     path = Path(path)
     try:
-        return tomllib.loads(path.read_text())
-    except tomllib.TOMLDecodeError as error:
-        raise LawFileError(f"{path}: not valid TOML: {error}") from error
+        with path.open("rb") as file:
+            raw = file.read(MAX_LAW_FILE + 1)
     except FileNotFoundError as error:
         raise LawFileError(f"{path}: no such law file") from error
+    except OSError as error:
+        raise LawFileError(f"{path}: cannot read the law file: {error.strerror or error}") from error
+    if len(raw) > MAX_LAW_FILE:
+        raise LawFileError(f"{path}: too large for a law file (over {MAX_LAW_FILE // 1024} KiB)")
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise LawFileError(f"{path}: not a text law file: byte {error.start} is not UTF-8") from None
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise LawFileError(f"{path}: not valid TOML: {error}") from error
+
+
+def _describe(value: object) -> str:
+    text = repr(value)
+    return f"{type(value).__name__} {text if len(text) <= 40 else text[:37] + '...'}"
+
+
+def check_law_data(data: dict, path: str | Path) -> None:
+    """The schema of a law file: known keys, required keys, and the type of every value.
+
+    Raises LawFileError naming the first problem, on one line. The values themselves (an
+    expression, a parameter's name or default, the law's name) are checked by derive.laws.make_law.
+    """
+    unknown = sorted(set(data) - set(LAW_KEYS))
+    if unknown:
+        raise LawFileError(f"{path}: unknown key(s) {unknown}; allowed: {sorted(LAW_KEYS)}")
+    for key in REQUIRED_KEYS:
+        if key not in data:
+            raise LawFileError(f"{path}: missing key {key!r}")
+    for key, kind in LAW_KEYS.items():
+        if key in data and not isinstance(data[key], kind):
+            example = ' (e.g. calculi = ["ito", "hk"])' if key == "calculi" else ""
+            raise LawFileError(f"{path}: {key} must be {_KINDS[kind]}{example}, got {_describe(data[key])}")
+    for calculus in data.get("calculi", []):
+        if calculus not in CALCULI:
+            raise LawFileError(f"{path}: calculi: unknown calculus {_describe(calculus)}; allowed: {list(CALCULI)}")
+    if "calculi" in data and not data["calculi"]:
+        raise LawFileError(f"{path}: calculi must not be empty; allowed: {list(CALCULI)}")
+    for key, spec in data.get("parameters", {}).items():
+        name = key if key.isidentifier() else repr(key)
+        if not isinstance(spec, dict):
+            raise LawFileError(f"{path}: parameters.{name} must be a table with a default ([parameters.{name}]), got {_describe(spec)}")
+        extra = sorted(set(spec) - set(PARAMETER_KEYS))
+        if extra:
+            raise LawFileError(f"{path}: parameters.{name} has unknown key(s) {extra}; allowed: {sorted(PARAMETER_KEYS)}")
+        if "default" not in spec:
+            raise LawFileError(f"{path}: parameters.{name} needs a default")
+        for key, kind in PARAMETER_KEYS.items():
+            if key in spec and (not isinstance(spec[key], kind) or isinstance(spec[key], bool)):
+                raise LawFileError(f"{path}: parameters.{name}.{key} must be {_KINDS[kind]}, got {_describe(spec[key])}")
+
+
+def write_text_atomic(path: Path, text: str, overwrite: bool = True) -> None:
+    """Write ``text`` to ``path`` through a temporary file in the same folder: a reader sees the old
+    file or the new one, never a part. With ``overwrite`` False, FileExistsError if ``path`` exists."""
+    path = Path(path)
+    mode = path.stat().st_mode & 0o777 if path.exists() else 0o644
+    descriptor, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(descriptor, "w", encoding="utf-8", newline="\n") as file:
+            file.write(text)
+        os.chmod(temporary, mode)
+        if overwrite:
+            os.replace(temporary, path)
+            return
+        try:
+            os.link(temporary, path)  # atomic, and fails if path exists
+        except FileExistsError:
+            raise
+        except OSError:  # a file system without hard links: exclusive creation instead
+            with path.open("x", encoding="utf-8", newline="\n") as file:
+                file.write(text)
+    finally:
+        Path(temporary).unlink(missing_ok=True)
 
 
 def potential_source_hash(name: str, source: Path | bytes | None = None) -> str:
@@ -69,5 +156,5 @@ def source_hash(data: dict, potentials: Path | bytes | None = None) -> str:
     weight = weight_potential(data)
     if weight is not None:
         content["weight"] = potential_source_hash(weight, potentials)
-    canonical = json.dumps(content, sort_keys=True, separators=(",", ":"))
+    canonical = json.dumps(content, sort_keys=True, separators=(",", ":"), default=repr)  # repr: a TOML date, in an invalid file
     return hashlib.sha256(canonical.encode()).hexdigest()

@@ -16,31 +16,34 @@ A law file is plain TOML (see ``derive/catalogue/``)::
 
 f is the magnitude of the tangential contact force (units of force) as a function of the
 tangential speed u >= 0, the centre distance r and the weight value w = w(r). Parameters are
-positive reals. ``calculi`` lists the calculi the law claims to support (default: all three); a
-calculus is left out only with a physical reason, e.g. constant friction has f(0+) > 0, so the
+positive reals. Expressions are data, never run: see derive.expressions for their grammar (numbers,
+u, r, w, the parameters, pi, + - * / **, a list of functions, Piecewise) and size limits.
+``calculi`` lists the calculi the law claims to support (default: all three); a calculus is left
+out only with a physical reason, e.g. constant friction has f(0+) > 0, so the
 Hänggi–Klimontovich amplitude f/u diverges at u = 0.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import json
+import keyword
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import mpmath
 import sympy as sp
-from sympy.core.function import AppliedUndef
-from sympy.parsing.sympy_parser import parse_expr
 
 from . import potentials
 from .calculus import CALCULI
-from .lawdata import CATALOGUE, LawFileError, read_law_data
-from .symbols import RESERVED, r, u, w
+from .expressions import CONSTANTS, LawError, check_expression, check_parameter_name, expression_text, parse_expression, snippet, time_limit
+from .lawdata import CATALOGUE, LawFileError, check_law_data, read_law_data, source_hash, write_text_atomic
+from .symbols import r, u, w
 
-
-class LawError(LawFileError):
-    """A friction law that cannot have a thermodynamically consistent noise amplitude."""
+#: Wall-time limits (seconds) of a law's validation, and of the symbolic limit in its tail check.
+VALIDATION_TIME_LIMIT = 120.0
+TAIL_LIMIT_TIME = 20.0
 
 
 @dataclass(frozen=True)
@@ -68,6 +71,9 @@ class FrictionLaw:
         weight: w(r) as a SymPy expression in ``r``, or None when ``w`` is not used.
         weight_source: the weight as written in the law file ("wca" or an expression).
         calculi: calculi the law supports.
+        source: the friction expression as written.
+        source_hash: for a law read by :func:`load_law`, the source hash (derive.lawdata.source_hash)
+            of the very bytes it was built from; generated kernels carry it. Empty otherwise.
     """
 
     name: str
@@ -78,7 +84,8 @@ class FrictionLaw:
     calculi: tuple[str, ...] = CALCULI
     description: str = ""
     reference: str = ""
-    source: str = field(default="", compare=False)  # the friction expression as written
+    source: str = field(default="", compare=False)
+    source_hash: str = field(default="", compare=False)
 
     @property
     def symbols(self) -> dict[str, sp.Symbol]:
@@ -88,19 +95,6 @@ class FrictionLaw:
     @property
     def defaults(self) -> dict[sp.Symbol, float]:
         return {p.symbol: p.default for p in self.parameters}
-
-
-def _parse(text: str, names: dict[str, sp.Symbol], what: str) -> sp.Expr:
-    try:
-        expr = parse_expr(text, local_dict=dict(names), evaluate=True)
-    except Exception as error:  # SymPy raises many types for malformed text
-        raise LawError(f"{what}: cannot parse {text!r}: {error}") from error
-    if not isinstance(expr, sp.Expr):
-        raise LawError(f"{what}: {text!r} is not an expression")
-    undefined = sorted(str(f.func) for f in expr.atoms(AppliedUndef))
-    if undefined:
-        raise LawError(f"{what}: unknown function(s) {', '.join(undefined)} in {text!r}")
-    return expr
 
 
 def make_law(
@@ -115,31 +109,37 @@ def make_law(
     """Build and validate a law; raises :class:`LawError` naming the problem.
 
     Args:
-        name: identifier (letters, digits, underscores).
-        friction: f as text or SymPy expression in u, r, w and the parameters.
+        name: identifier (ASCII letters, digits, underscores; not starting with an underscore).
+        friction: f as text (parsed as data by :func:`derive.expressions.parse_expression`, never
+            evaluated) or as a SymPy expression in u, r, w and the parameters.
         parameters: ``{name: {"default": x, "unit": ..., "description": ...}}`` or Parameters.
         weight: None, the name of a potential in :mod:`derive.potentials` (w = -dU/dr), or an
             expression in r.
         calculi: the calculi the law supports.
     """
-    if not name.isidentifier():
-        raise LawError(f"law name {name!r} must be an identifier (letters, digits, underscores)")
+    _check_name(name)
+    if not isinstance(parameters, (dict, tuple, list)):
+        raise LawError(f"law {name}: parameters must be a table of parameter tables, got {type(parameters).__name__}")
     params = tuple(
         p if isinstance(p, Parameter) else Parameter(key, **_parameter_fields(name, key, p))
         for key, p in (parameters.items() if isinstance(parameters, dict) else ((q.name, q) for q in parameters))
     )
+    for p in params:
+        _check_parameter(name, p)
     weight_expr, weight_params = _weight(name, weight, params)
     params = params + weight_params
-    for p in params:
-        if p.name in RESERVED or p.name.startswith(("cse", "_")) or not p.name.isidentifier():
-            raise LawError(f"law {name}: parameter name {p.name!r} is reserved or not an identifier")
-        if not (isinstance(p.default, (int, float)) and math.isfinite(p.default) and p.default > 0):
-            raise LawError(f"law {name}: parameter {p.name} needs a finite positive default, got {p.default!r}")
+    for key, value in (("description", description), ("reference", reference)):
+        if not isinstance(value, str):
+            raise LawError(f"law {name}: {key} must be a string, got {type(value).__name__}")
+    if isinstance(calculi, str) or not isinstance(calculi, (tuple, list)) or not calculi or not set(calculi) <= set(CALCULI):
+        raise LawError(f"law {name}: calculi must be a non-empty list from {list(CALCULI)}, got {snippet(repr(calculi))}")
     names = {"u": u, "r": r, "w": w, **{p.name: p.symbol for p in params}}
-    expr = _parse(friction, names, f"law {name}") if isinstance(friction, str) else sp.sympify(friction)
-    unknown_calculi = sorted(set(calculi) - set(CALCULI))
-    if unknown_calculi or not calculi:
-        raise LawError(f"law {name}: calculi must be a non-empty subset of {CALCULI}, got {list(calculi)}")
+    if isinstance(friction, str):
+        expr, source = parse_expression(friction, names, f"law {name}: f"), friction
+    else:
+        check_expression(friction, f"law {name}: f")
+        expr, source = friction, expression_text(friction)
+        parse_expression(source, names, f"law {name}: f as a law file writes it")  # save_law must write a loadable file
     law = FrictionLaw(
         name=name,
         friction=expr,
@@ -149,25 +149,51 @@ def make_law(
         calculi=tuple(c for c in CALCULI if c in calculi),
         description=description,
         reference=reference,
-        source=friction if isinstance(friction, str) else sp.sstr(expr),
+        source=source,
     )
-    validate(law)
+    with time_limit(VALIDATION_TIME_LIMIT, LawError(f"law {name}: validation took longer than {VALIDATION_TIME_LIMIT:g} s; simplify f")):
+        validate(law)
     return law
+
+
+def _check_name(name: object) -> None:
+    """A law's name is a file stem and a module name: an ASCII identifier, not private, not a keyword."""
+    if not (isinstance(name, str) and name.isascii() and name.isidentifier() and len(name) <= 64):
+        raise LawError(f"law name {snippet(repr(name))} must be an identifier of at most 64 ASCII letters, digits and underscores")
+    if name.startswith("_") or keyword.iskeyword(name):
+        raise LawError(f"law name {name!r} must not start with an underscore or be a Python keyword")
+
+
+def _check_parameter(law: str, p: Parameter) -> None:
+    """A parameter's name becomes a symbol and a variable of the kernels; its default a positive float."""
+    name = p.name
+    check_parameter_name(name, f"law {law}")
+    try:
+        valid = not isinstance(p.default, bool) and isinstance(p.default, (int, float)) and math.isfinite(p.default) and p.default > 0
+    except OverflowError:
+        valid = False
+    if not valid:
+        raise LawError(f"law {law}: parameter {name} needs a finite positive default, got {snippet(repr(p.default))}")
+    for key in ("unit", "description"):
+        if not isinstance(getattr(p, key), str):
+            raise LawError(f"law {law}: parameter {name}: {key} must be a string, got {type(getattr(p, key)).__name__}")
 
 
 def _parameter_fields(law: str, key: str, spec: dict) -> dict:
     if not isinstance(spec, dict) or "default" not in spec:
-        raise LawError(f"law {law}: parameter {key} needs a table with a 'default'")
+        raise LawError(f"law {law}: parameter {snippet(repr(key))} needs a table with a 'default'")
     unknown = set(spec) - {"default", "unit", "description"}
     if unknown:
-        raise LawError(f"law {law}: parameter {key} has unknown keys {sorted(unknown)}")
-    return {"default": spec["default"], "unit": str(spec.get("unit", "1")), "description": str(spec.get("description", ""))}
+        raise LawError(f"law {law}: parameter {snippet(repr(key))} has unknown keys {sorted(unknown)}")
+    return {"default": spec["default"], "unit": spec.get("unit", "1"), "description": spec.get("description", "")}
 
 
 def _weight(name: str, weight: str | None, params: tuple[Parameter, ...]) -> tuple[sp.Expr | None, tuple[Parameter, ...]]:
     """w(r) from a potential's name (w = -dU/dr) or from an expression in r."""
     if weight is None or weight == "":
         return None, ()
+    if not isinstance(weight, str):
+        raise LawError(f"law {name}: weight must be a string (a potential or an expression in r), got {type(weight).__name__}")
     if weight in potentials.PAIR_POTENTIALS:
         potential = potentials.PAIR_POTENTIALS[weight]
         own = {p.name for p in params}
@@ -178,10 +204,10 @@ def _weight(name: str, weight: str | None, params: tuple[Parameter, ...]) -> tup
         )
         return potential.force, extra
     names = {"r": r, **{p.name: p.symbol for p in params}}
-    expr = _parse(weight, names, f"law {name} weight")
-    stray = expr.free_symbols - set(names.values())
-    if stray:
-        raise LawError(f"law {name}: weight {weight!r} uses unknown symbol(s) {sorted(map(str, stray))}")
+    if weight.isidentifier() and weight not in names and weight not in CONSTANTS:
+        known = ", ".join(potentials.PAIR_POTENTIALS)
+        raise LawError(f"law {name}: weight {snippet(weight)!r} is neither a potential ({known}) nor an expression in r")
+    expr = parse_expression(weight, names, f"law {name}: weight", excluded=("u", "w"))
     return expr, ()
 
 
@@ -205,18 +231,18 @@ def validate(law: FrictionLaw) -> None:
     unknown = f.free_symbols - allowed
     if unknown:
         raise LawError(
-            f"law {law.name}: unknown symbol(s) {sorted(map(str, unknown))} in f = {f}; "
+            f"law {law.name}: unknown symbol(s) {sorted(map(str, unknown))} in f = {_short(f)}; "
             f"allowed: u, r, w and parameters {sorted(law.symbols)}"
         )
     if not f.free_symbols & {u, w, r}:
         raise LawError(
-            f"law {law.name}: f = {f} depends on none of u, w, r: a friction law must depend on the "
+            f"law {law.name}: f = {_short(f)} depends on none of u, w, r: a friction law must depend on the "
             f"sliding speed u or (constant friction, F-30) vanish off contact through w(r) or r"
         )
     if w in f.free_symbols and law.weight is None:
         raise LawError(f"law {law.name}: f uses w but the law defines no weight (set weight = 'wca' or an expression in r)")
     if f.has(sp.I) or f.is_real is False:
-        raise LawError(f"law {law.name}: f = {f} is not real")
+        raise LawError(f"law {law.name}: f = {_short(f)} is not real")
     _check_samples(law)
     _check_tail(law)
 
@@ -252,11 +278,14 @@ def _check_tail(law: FrictionLaw) -> None:
     f = law.friction.subs(law.defaults).subs({w: 1, r: 1})
     tail = _asymptotic_branch(f)
     growth = None
-    if not tail.has(sp.Min, sp.Max, sp.Piecewise):
+    if tail.is_polynomial(u):
+        growth = sp.Integer(0)  # ln of a polynomial grows like ln u (and sp.limit recurses on high degrees)
+    elif not tail.has(sp.Min, sp.Max, sp.Piecewise):
         try:
-            growth = sp.limit(sp.log(tail) / u**2, u, sp.oo)
-        except (NotImplementedError, ValueError, TypeError):
-            growth = None
+            with time_limit(TAIL_LIMIT_TIME, _SlowLimit()):
+                growth = sp.limit(sp.log(tail) / u**2, u, sp.oo)
+        except (NotImplementedError, ValueError, TypeError, RecursionError, _SlowLimit):
+            growth = None  # decided numerically below
     if growth is None or growth.has(sp.Limit) or not growth.is_comparable and growth not in (sp.oo, -sp.oo):
         evaluate = sp.lambdify(u, sp.log(tail) / u**2, modules="mpmath")
         with mpmath.workdps(30):
@@ -268,6 +297,14 @@ def _check_tail(law: FrictionLaw) -> None:
             f"law {law.name}: f grows like exp(c u^2) with c = {growth} as u -> oo; the integral (F-22) "
             f"diverges for kT nu >= 1/(2c), so no noise amplitude exists"
         )
+
+
+class _SlowLimit(Exception):
+    """sp.limit took longer than TAIL_LIMIT_TIME."""
+
+
+def _short(expr: sp.Expr) -> str:
+    return snippet(str(expr), 80)
 
 
 def _asymptotic_branch(f: sp.Expr) -> sp.Expr:
@@ -285,35 +322,36 @@ def _asymptotic_branch(f: sp.Expr) -> sp.Expr:
 
 
 def load_law(path: str | Path) -> FrictionLaw:
-    """Read and validate a law file (TOML)."""
+    """Read, check and validate a law file (TOML); its ``source_hash`` is that of the bytes read."""
     path = Path(path)
     try:
         data = read_law_data(path)
+        check_law_data(data, path)
     except LawFileError as error:
         raise LawError(str(error)) from error
-    known = {"name", "friction", "parameters", "weight", "calculi", "description", "reference"}
-    unknown = set(data) - known
-    if unknown:
-        raise LawError(f"{path}: unknown key(s) {sorted(unknown)}; allowed: {sorted(known)}")
-    for key in ("name", "friction"):
-        if key not in data:
-            raise LawError(f"{path}: missing key {key!r}")
     if data["name"] != path.stem:
-        raise LawError(f"{path}: name {data['name']!r} must equal the file name {path.stem!r}")
-    return make_law(
+        raise LawError(f"{path}: name {snippet(repr(data['name']))} must equal the file name {path.stem!r}")
+    digest = source_hash(data, potentials.SOURCE)  # now, not after the derivation: the file may change meanwhile
+    law = make_law(
         name=data["name"],
-        friction=str(data["friction"]),
+        friction=data["friction"],
         parameters=data.get("parameters", {}),
         weight=data.get("weight"),
         calculi=tuple(data.get("calculi", CALCULI)),
         description=data.get("description", ""),
         reference=data.get("reference", ""),
     )
+    return dataclasses.replace(law, source_hash=digest)
+
+
+def _quote(text: str) -> str:
+    """A TOML basic string (JSON escapes, UTF-8 kept as is; DEL is a control character in TOML)."""
+    return json.dumps(text, ensure_ascii=False).replace("\x7f", "\\u007f")
 
 
 def law_text(law: FrictionLaw) -> str:
     """The law as TOML text (the inverse of :func:`load_law`); weight parameters are implied."""
-    quote = json.dumps  # TOML basic strings accept JSON string escapes
+    quote = _quote
     implied = set(potentials.PAIR_POTENTIALS[law.weight_source].defaults) if law.weight_source in potentials.PAIR_POTENTIALS else set()
     lines = [f"name = {quote(law.name)}"]
     if law.reference:
@@ -333,10 +371,23 @@ def law_text(law: FrictionLaw) -> str:
     return "\n".join(lines) + "\n"
 
 
-def save_law(law: FrictionLaw, folder: str | Path = CATALOGUE) -> Path:
-    """Write the law to ``folder/<name>.toml`` and return the path."""
+def save_law(law: FrictionLaw, folder: str | Path = CATALOGUE, overwrite: bool = False) -> Path:
+    """Write the law to ``folder/<name>.toml`` (atomically) and return the path.
+
+    An existing file with other content is replaced only with ``overwrite=True``; one holding
+    exactly this text is left as it is.
+    """
     path = Path(folder) / f"{law.name}.toml"
-    path.write_text(law_text(law))
+    text = law_text(law)
+    refused = LawError(f"{path} exists and holds another law file: save_law(law, overwrite=True) replaces it")
+    if path.exists() and not overwrite:
+        if path.read_bytes() == text.encode():
+            return path
+        raise refused
+    try:
+        write_text_atomic(path, text, overwrite=overwrite)
+    except FileExistsError:
+        raise refused from None
     return path
 
 

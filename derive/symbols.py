@@ -8,6 +8,9 @@ mu = 1/m_i + 1/m_k + R_i^2/I_i + R_k^2/I_k (units 1/mass).
 
 from __future__ import annotations
 
+import builtins
+import keyword
+
 import sympy as sp
 
 u = sp.Symbol("u", positive=True)
@@ -21,3 +24,7 @@ s = sp.Symbol("s", positive=True)
 
 #: Names a law may not use for its parameters (symbols, and names of the generated kernels).
 RESERVED = frozenset({"u", "r", "w", "kT", "mu", "s", "params", "math", "numba", "erfcx", "friction", "weight"})
+
+#: Python's keywords and builtins: not parameter names (a parameter ``min`` would shadow the ``min``
+#: that the printer writes for ``Min`` in a kernel).
+PYTHON_NAMES = frozenset(keyword.kwlist) | frozenset(dir(builtins))

@@ -1,5 +1,6 @@
 """generated/ is fresh, regeneration is idempotent, stale kernels are refused."""
 
+import re
 import shutil
 import subprocess
 import sys
@@ -8,9 +9,11 @@ from pathlib import Path
 import pytest
 
 import derive.emit
+import fricgen.kernels
 from derive import lawdata
 from derive.emit import GENERATED, GenerationError, generate
-from derive.lawdata import CATALOGUE, POTENTIALS
+from derive.lawdata import CATALOGUE, POTENTIALS, read_law_data
+from derive.verification import Report
 from fricgen.errors import ConfigError, FricgenError
 from fricgen.kernels import KernelError, load_law_kernels, load_potential
 
@@ -67,6 +70,28 @@ def test_stale_kernels_are_refused_with_the_command(tmp_path):
     with pytest.raises(KernelError, match="stale.*fricgen generate linear"):
         load_law_kernels("linear", catalogue=catalogue)
     assert load_law_kernels("coulomb", catalogue=catalogue).name == "coulomb"
+
+
+def test_a_law_file_edited_during_generation_leaves_stale_kernels(tmp_path, monkeypatch):
+    """The kernels carry the hash of the bytes the law was read from, not of the file after the
+    derivation: an edit in between (here: during verification) leaves kernels the loader refuses."""
+    catalogue = tmp_path / "catalogue"
+    shutil.copytree(CATALOGUE, catalogue)
+    path = catalogue / "linear.toml"
+    before = fricgen.kernels.source_hash(read_law_data(path))  # the loader's hash, as load_law_kernels takes it
+
+    def verify_while_the_file_is_edited(model):  # verification is slow: a passing report stands in for it
+        path.write_text(path.read_text().replace("default = 1.0", "default = 2.0"))
+        return Report(model.law.name, str(model.calculus), model.closed_form, {"stand_in": True})
+
+    monkeypatch.setattr(derive.emit, "verify", verify_while_the_file_is_edited)
+    written, _ = generate(["linear"], catalogue=catalogue, output=tmp_path / "out")
+    text = (tmp_path / "out" / "laws" / "linear.py").read_text()
+    (emitted,) = re.findall(r"^SOURCE_HASH = '([0-9a-f]{64})'$", text, flags=re.MULTILINE)
+    assert "DEFAULTS = (1.0," in text and emitted == before  # the law that was derived, under its own hash
+    after = fricgen.kernels.source_hash(read_law_data(path))
+    assert after != emitted, "the edited file must not match the kernels of the old law"
+    assert not list((tmp_path / "out").rglob("*.tmp")), "atomic writes leave no temporary files"
 
 
 @pytest.fixture
