@@ -5,6 +5,8 @@ common: :class:`Section` gives it one key prefix for error messages (``thermosta
 :func:`structure` builds it (and nested sections) from plain data such as a TOML table or a JSON
 checkpoint with one-line errors for unknown keys and wrong types, and :func:`flat_fields` lists
 its fields for command-line flags, so flags, files and engines cannot disagree on a default.
+It also holds the two limits that no number checks by itself: the memory of the machine (an
+estimate is refused before anything is allocated) and the 64-bit step counters.
 """
 
 from __future__ import annotations
@@ -12,11 +14,32 @@ from __future__ import annotations
 import dataclasses
 import difflib
 import math
+import os
 import typing
 from types import UnionType
 from typing import Any, ClassVar
 
 from .errors import ConfigError
+
+STEP_LIMIT = 2**62
+"""Most steps a run may take: step counters and noise keys are 64-bit integers."""
+
+
+def machine_memory() -> float:
+    """Physical memory of this machine in bytes (inf where the system does not tell)."""
+    try:
+        return float(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES"))
+    except (AttributeError, ValueError, OSError):
+        return math.inf
+
+
+def size_text(nbytes: float) -> str:
+    """A number of bytes for people: ``1.5 GiB``."""
+    for unit in ("B", "KiB", "MiB", "GiB", "TiB"):
+        if nbytes < 1024:
+            return f"{nbytes:.3g} {unit}"
+        nbytes /= 1024
+    return f"{nbytes:.3g} PiB"
 
 
 class Section:
@@ -47,6 +70,22 @@ class Section:
         for name in names:
             value = getattr(self, name)
             self.require(math.isfinite(value) and value >= 0, name, f"must be >= 0 and finite, got {value}", "give 0 or more")
+
+    def require_memory(self, name: str, needed: float, what: str) -> None:
+        """``what`` (e.g. "100 particles") fits this machine's memory with ``needed`` bytes (an estimate made
+        before anything is allocated); else ConfigError at field ``name`` with the estimate and the memory."""
+        total = machine_memory()
+        amount = f"about {size_text(needed)}" if math.isfinite(needed) else "an unbounded amount"
+        self.require(
+            needed <= total,
+            name,
+            f"{what} need {amount} of memory, more than this machine has ({size_text(total)})",
+            "give a smaller value",
+        )
+
+    def require_steps(self, name: str, steps: float) -> None:
+        """A run of ``steps`` steps (set by field ``name``) fits the 64-bit step counters."""
+        self.require(steps <= STEP_LIMIT, name, f"gives {steps:.3g} steps, more than a run can count (2^62)", "give a shorter run")
 
 
 def _describe(hint) -> tuple[str, str]:

@@ -12,9 +12,16 @@ import numpy as np
 
 from ..errors import ConfigError, KernelError
 from ..kernels import load_law_kernels
-from ..langevin.pairs import WCA_RANGE
 from ..langevin.simulation import Simulation
-from ..langevin.system import Particles, add_slab_walls, lattice_positions, packing_box, random_positions, thermal_state
+from ..langevin.system import (
+    Particles,
+    add_slab_walls,
+    interaction_reach,
+    lattice_positions,
+    packing_box,
+    random_positions,
+    thermal_state,
+)
 from .config import RunConfig, check_fraction, slab_half_height
 
 
@@ -38,7 +45,7 @@ def build(c: RunConfig) -> Simulation:
         box = packing_box(Particles.spheres(s.n, s.radius, s.mass), dim, s.packing_fraction)
     else:
         box = np.array([*s.box, 0.0][:3], dtype=float)
-    reach = 2 * (WCA_RANGE * 2 * s.radius + config.skin)
+    reach = 2 * interaction_reach(s.radius, config.skin)
     if not box[:dim].min() > reach:
         raise ConfigError(
             "system.box" if s.box is not None else "system.n",

@@ -1,34 +1,54 @@
 """The ``fricgen`` command line: one program, one subcommand per job.
 
 Exit status: 0 done, 1 a physical failure (a failed check, a run that blew up), 2 bad input
-(one line on stderr naming the problem), 130 interrupted. Errors of fricgen's own family
-(fricgen.errors) and of the symbolic layer (derive.errors) print one line; anything else is a bug
-and keeps its traceback.
+(one line on stderr naming the flag or key, the problem and the fix), 130 interrupted. Errors of
+fricgen's own family (fricgen.errors), of the symbolic layer (derive.errors) and of the argument
+parser print one line; anything else is a bug and keeps its traceback. A negative number after a
+flag is its value (``--dt -1e-3`` reads as ``--dt=-1e-3``, and the range check answers).
 """
 
 from __future__ import annotations
 
 import argparse
 import dataclasses
-import json
 import sys
 import typing
 
 from derive.calculus import CALCULI
 from derive.errors import DeriveError
 
-from ..errors import FricgenError
+from ..errors import ConfigError, FricgenError
+from .arguments import Parser, UsageError, join_negative_values, named_by_flags
+from .outputs import dumps
+
+
+def _check_law_names(names: list[str]) -> None:
+    """Every name is a law of the catalogue (its files, read without SymPy); ConfigError at LAW otherwise."""
+    from derive.lawdata import CATALOGUE
+
+    available = sorted(path.stem for path in CATALOGUE.glob("*.toml"))
+    unknown = [name for name in names if name not in available]
+    if unknown:
+        raise ConfigError(
+            "LAW", f"unknown law {', '.join(map(repr, unknown))}: not in the catalogue", f"choose from {', '.join(available)}"
+        )
+
+
+def _check_calculus(law: str, calculus: str) -> None:
+    """The law's generated kernels exist, are fresh and have the calculus (ConfigError at --calculus)."""
+    from ..kernels import load_law_kernels
+
+    calculi = load_law_kernels(law).calculi
+    if calculus not in calculi:
+        raise ConfigError("--calculus", f"law {law} has no kernels for the {calculus!r} calculus", f"choose one of {list(calculi)}")
 
 
 def _verify(args: argparse.Namespace) -> int:
     """fricgen verify [LAW ...] [--calculus C|all] [--json]: derive and verify, exit 1 on failure."""
+    _check_law_names(args.laws)
     from derive import catalogue, derive_noise, verify
 
     laws = catalogue()
-    unknown = [name for name in args.laws if name not in laws]
-    if unknown:
-        print(f"fricgen verify: unknown law(s) {', '.join(unknown)}; the catalogue has: {', '.join(laws)}", file=sys.stderr)
-        return 2
     named = set(args.laws)
     calculi = CALCULI if args.calculus == "all" else (args.calculus,)
     reports = []
@@ -50,12 +70,19 @@ def _verify(args: argparse.Namespace) -> int:
                 extra = f"  failed: {failed} {report.details}" if failed else ""
                 print(f"{name:20s} {calculus:13s} {form:16s} {status:9s} {report.seconds:6.2f} s{extra}", flush=True)
     if args.json:
-        print(json.dumps([r.as_dict() for r in reports], indent=2))
+        print(dumps([r.as_dict() for r in reports]))
     return 0 if all(r.verified for r in reports) else 1
 
 
 def _generate(args: argparse.Namespace) -> int:
     """fricgen generate [LAW ...]: derive, verify and emit kernels (idempotent)."""
+    from pathlib import Path
+
+    from .outputs import check_folder
+
+    _check_law_names(args.laws)
+    if args.output:
+        check_folder(Path(args.output), "--output")
     from derive.emit import GENERATED, generate
 
     written, reports = generate(args.laws or None, output=args.output or GENERATED)
@@ -85,67 +112,56 @@ def _assignment(text: str) -> tuple[str, float]:
 
 def _noise(args: argparse.Namespace) -> int:
     """fricgen noise LAW ...: D(u) through the generated kernels, as JSON."""
-    import numpy as np
+    from .noise import NoiseQuery, evaluate
 
-    from ..kernels import load_law_kernels
-
-    kernels = load_law_kernels(args.law)
-    params = kernels.parameters(**dict(args.param))
-    kernels.noise_amplitude(args.calculus)
-    problems = [f"--{k} must be positive" for k in ("mu", "kT") if not getattr(args, k) > 0]
-    problems += ["--u values must be finite and >= 0"] if any(not (np.isfinite(x) and x >= 0) for x in args.u) else []
-    if kernels.has_weight and args.r is None and args.w is None:
-        problems.append(f"law {args.law} has a weight w(r): give --r R (centre distance) or --w W (weight value)")
-    if args.w is not None and args.w < 0:
-        problems.append("--w must be >= 0")
-    if problems:
-        print("fricgen noise: " + "; ".join(problems), file=sys.stderr)
-        return 2
-    r = 1.0 if args.r is None else args.r
-    w = args.w if args.w is not None else (float(kernels.weight(r, params)) if kernels.has_weight else 1.0)
-    amplitude = kernels.noise_amplitude(args.calculus)
-    d = [float(amplitude(x, w, r, args.mu, args.kT, params)) for x in args.u]
-    f = [float(kernels.friction(x, w, r, params)) for x in args.u]
-    result = {
-        "law": args.law,
-        "calculus": args.calculus,
-        "u": args.u,
-        "D": d,
-        "f": f,
-        "w": w,
-        "r": r,
-        "mu": args.mu,
-        "kT": args.kT,
-        "parameters": dict(zip(kernels.parameter_names, params.tolist())),
-    }
+    _check_law_names([args.law])
+    _check_calculus(args.law, args.calculus)
+    query = NoiseQuery(tuple(args.u), args.r, args.w, args.mu, args.kT)
+    with named_by_flags({}):
+        result = evaluate(args.law, args.calculus, query, dict(args.param))
     if args.json:
-        print(json.dumps(result, indent=2))
+        print(dumps(result))
     else:
-        print(f"{args.law} ({args.calculus}), w = {w:g}, mu = {args.mu:g}, kT = {args.kT:g}")
-        for x, fx, dx in zip(args.u, f, d):
+        print(f"{args.law} ({args.calculus}), w = {result['w']:g}, mu = {args.mu:g}, kT = {args.kT:g}")
+        for x, fx, dx in zip(result["u"], result["f"], result["D"]):
             print(f"u = {x:12.6g}   f = {fx:12.6g}   D = {dx:.12g}")
     return 0
 
 
+#: The keys of the thermostat check's sections and the flags that set them.
+CHECK_FLAGS = {
+    "n": "--n",
+    "phi": "--phi",
+    "dim": "--dim",
+    "total_time": "--time",
+    "seed": "--seed",
+    "run.seed": "--seed",
+    "thermostat.dt": "--dt",
+    "thermostat.kT": "--kT",
+    "law.calculus": "--calculus",
+}
+
+
 def _thermostat_check(args: argparse.Namespace) -> int:
     """fricgen thermostat-check LAW ...: the statistical test of a law's thermostat, as JSON."""
-    from ..langevin.thermostat_check import thermostat_check
+    from ..langevin.thermostat_check import passive_check, passive_run
 
-    result = thermostat_check(
-        args.law,
-        dim=args.dim,
-        calculus=args.calculus,
-        contact_noise=not args.no_contact_noise,
-        n=args.n,
-        phi=args.phi,
-        dt=args.dt,
-        total_time=args.time,
-        seed=args.seed,
-        parameters=dict(args.param),
-        solvent=not args.no_solvent,
-    )
+    _check_law_names([args.law])
+    _check_calculus(args.law, args.calculus)
+    options = {"dim": args.dim, "calculus": args.calculus, "n": args.n, "phi": args.phi, "dt": args.dt, "kT": args.kT}
+    with named_by_flags(CHECK_FLAGS):
+        check = passive_check(
+            args.law,
+            **options,
+            contact_noise=not args.no_contact_noise,
+            total_time=args.time,
+            seed=args.seed,
+            parameters=dict(args.param),
+            solvent=not args.no_solvent,
+        )
+        result = passive_run(check)[0]
     if args.json:
-        print(json.dumps(result.as_dict(), indent=2))
+        print(dumps(result.as_dict()))
     else:
         r = result
         print(
@@ -157,14 +173,15 @@ def _thermostat_check(args: argparse.Namespace) -> int:
 
 
 def _demo(args: argparse.Namespace) -> int:
-    """fricgen demo [--out DIR] [--json]: the passive check with and without contact noise; plots and JSON."""
+    """fricgen demo [--out DIR] [--json]: the passive check with and without contact noise; plots and JSON.
+    Exit status 1 if the run with the contact noise fails the check (the one without is meant to)."""
     from pathlib import Path
 
     from .demo import describe, run_demo
 
     summary = run_demo(Path(args.out))
-    print(json.dumps(summary, indent=2) if args.json else describe(summary, Path(args.out)))
-    return 0
+    print(dumps(summary) if args.json else describe(summary, Path(args.out)))
+    return 0 if summary["runs"]["with_contact_noise"]["passed"] else 1  # the consistent thermostat failed its check
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -179,15 +196,14 @@ def _bcd(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from ..rods.config import rod_config
-    from .rods_study import study
+    from .rods_study import Study, study
 
     values = {name: getattr(args, name) for name in _rod_fields()}
-    config = rod_config(**{name: dict(value) if isinstance(value, list) else value for name, value in values.items()})
-    if not (args.time > 0 and args.equilibrate >= 0):
-        raise FricgenError("--time must be positive and --equilibrate >= 0")
-    summary = study(config, args.time, args.equilibrate, Path(args.out), extrapolate=args.extrapolate)
+    with named_by_flags(_rod_flags()):
+        config = rod_config(**{name: dict(value) if isinstance(value, list) else value for name, value in values.items()})
+        summary = study(Study(config, args.time, args.equilibrate, args.extrapolate), Path(args.out))
     if args.json:
-        print(json.dumps(summary, indent=2))
+        print(dumps(summary))
     else:
         print(
             f"L1/rho_bar = {summary['l1_dev_over_rho']:.4f}, max |d rho| = {summary['max_abs_dev']:.4f}, "
@@ -232,23 +248,38 @@ def _rod_fields() -> dict:
     return flat_fields(*PARTS)
 
 
+def _rod_flags() -> dict[str, str]:
+    """The flag of each field of the rod configuration, by its key (``numerics.dt``) and by its name
+    (``--NAME`` with dashes; ``--field-param`` for the table ``field_params``)."""
+    flags = {}
+    for name, (section, _) in _rod_fields().items():
+        hint = typing.get_type_hints(section)[name]
+        flag = "--" + (name.removesuffix("s") if typing.get_origin(hint) is dict else name).replace("_", "-")
+        flags[name] = flags[f"{section.SECTION}.{name}"] = flag
+    return flags
+
+
 def _add_rod_flags(command: argparse.ArgumentParser) -> None:
     """One flag per field of the rod configuration, with its type and default: ``--NAME`` (dashes for
     underscores), and ``--field-param NAME=VALUE`` (repeated) for the tables of parameters."""
+    flags = _rod_flags()
     for name, (section, f) in _rod_fields().items():
         hint = typing.get_type_hints(section)[name]
         default = f.default if f.default is not dataclasses.MISSING else f.default_factory()
         text = f"{ROD_HELP[name]} (default {default})"
         if typing.get_origin(hint) is dict:
-            flag = "--" + name.removesuffix("s").replace("_", "-")
-            command.add_argument(flag, dest=name, type=_assignment, action="append", default=[], metavar="NAME=VALUE", help=ROD_HELP[name])
+            command.add_argument(
+                flags[name], dest=name, type=_assignment, action="append", default=[], metavar="NAME=VALUE", help=ROD_HELP[name]
+            )
         else:
             kind = next(t for t in (int, float, str) if t is hint or t in typing.get_args(hint))
-            command.add_argument("--" + name.replace("_", "-"), type=kind, default=default, help=text)
+            command.add_argument(flags[name], type=kind, default=default, help=text)
 
 
 def parser() -> argparse.ArgumentParser:
-    main = argparse.ArgumentParser(prog="fricgen", description=__doc__)
+    from ..langevin.config import Thermostat
+
+    main = Parser(prog="fricgen", description=__doc__)
     commands = main.add_subparsers(dest="command", required=True)
     verify = commands.add_parser("verify", help="derive D(u, r) for catalogue laws and verify zero probability current")
     verify.add_argument("laws", nargs="*", metavar="LAW", help="law names (default: the whole catalogue)")
@@ -282,7 +313,8 @@ def parser() -> argparse.ArgumentParser:
     check.add_argument("--no-solvent", action="store_true", help="friction thermostat alone (gamma = gamma_R = 0)")
     check.add_argument("--n", type=int, help="particles (default 256 in 2-D, 216 in 3-D)")
     check.add_argument("--phi", type=float, help="packing fraction (default 0.6 in 2-D, 0.3 in 3-D)")
-    check.add_argument("--dt", type=float, default=1e-3)
+    check.add_argument("--dt", type=float, default=Thermostat.dt, help=f"time step (default {Thermostat.dt})")
+    check.add_argument("--kT", type=float, default=Thermostat.kT, help=f"thermal energy, the temperature checked (default {Thermostat.kT})")
     check.add_argument("--time", type=float, default=40.0, help="simulated time (the first 10%% equilibrates)")
     check.add_argument("--seed", type=int, default=1)
     check.add_argument("--param", type=_assignment, action="append", default=[], metavar="NAME=VALUE")
@@ -315,15 +347,24 @@ def parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    args = parser().parse_args(argv)
+    words = join_negative_values(list(sys.argv[1:] if argv is None else argv))
+    prog = "fricgen"
     try:
+        args = parser().parse_args(words)
+        prog = f"fricgen {args.command}"
         return args.run(args)
+    except UsageError as error:
+        return _fail(error.prog, error, 2)
     except (FricgenError, DeriveError) as error:
-        print(f"fricgen {args.command}: {error}", file=sys.stderr)
-        return getattr(error, "exit_status", 2)
+        return _fail(prog, error, getattr(error, "exit_status", 2))
     except KeyboardInterrupt:
-        print(f"fricgen {args.command}: interrupted", file=sys.stderr)
-        return 130
+        return _fail(prog, "interrupted", 130)
+
+
+def _fail(prog: str, error: Exception | str, status: int) -> int:
+    """Print ``prog: error`` on one line of stderr and return the exit status."""
+    print(f"{prog}: {' '.join(str(error).split())}", file=sys.stderr)
+    return status
 
 
 if __name__ == "__main__":

@@ -16,7 +16,7 @@ from pathlib import Path
 
 from ..errors import ConfigError
 from ..langevin.config import Active, Bulk, LangevinConfig, Law, Thermostat
-from ..langevin.system import CLOSE_PACKING, RANDOM_LIMIT
+from ..langevin.system import CLOSE_PACKING, RANDOM_LIMIT, memory_estimate
 from ..schema import Section, structure
 
 EXAMPLES = Path(__file__).with_name("examples")
@@ -82,7 +82,10 @@ class Walls(Section):
     def __post_init__(self):
         self.require_nonnegative("roughness")
         self.require(
-            self.spacing > 0, "spacing", f"must be positive, got {self.spacing}", "give the walls' lattice constant (the paper: 1)"
+            0 < self.spacing < math.inf,
+            "spacing",
+            f"must be positive and finite, got {self.spacing}",
+            "give the walls' lattice constant (the paper: 1)",
         )
         self.require_positive("half_width")
 
@@ -100,6 +103,7 @@ class Run(Section):
 
     def __post_init__(self):
         self.require(self.steps >= 1, "steps", f"must be >= 1, got {self.steps}", "give the number of steps")
+        self.require_steps("steps", self.steps)
         self.require(
             0 <= self.equilibrate < self.steps, "equilibrate", f"must be in [0, steps = {self.steps}), got {self.equilibrate}", "lower it"
         )
@@ -140,7 +144,7 @@ class RunConfig(Section):
     output: Output = field(default_factory=Output)
 
     def __post_init__(self):
-        s, dim = self.system, self.system.dimension
+        dim = self.system.dimension
         self.require(len(self.bulk.force) in (0, dim), "bulk.force", f"needs {dim} components", "give [Fx, Fy] in 2-D, [Fx, Fy, Fz] in 3-D")
         for key in ("period", "trajectory_period", "checkpoint_period"):
             value, chunk = getattr(self.output, key), self.run.chunk
@@ -149,8 +153,12 @@ class RunConfig(Section):
             self.require(
                 allowed, f"output.{key}", f"must be {smallest} multiple of run.chunk = {chunk}, got {value}", "adjust it or run.chunk"
             )
-        if self.walls is None:
-            return
+        if self.walls is not None:
+            self._check_walls()
+        self._check_memory()
+
+    def _check_walls(self) -> None:
+        s = self.system
         self.require(
             s.box is not None, "system.box", "slab walls need an explicit box (taller than 2 half_width)", "add box = [Lx, Ly(, Lz)]"
         )
@@ -161,6 +169,20 @@ class RunConfig(Section):
             f"{w.half_width} leaves no room: need 2 radius + 3 roughness < half_width < Ly/2 = {ly / 2:g}",
             "change half_width or system.box[1]",
         )
+
+    def _check_memory(self) -> None:
+        """The particles (mobile, estimated from the packing fraction if need be, and walls) and the cell
+        list fit this machine's memory: checked before anything is allocated."""
+        s, dim = self.system, self.system.dimension
+        per_particle = math.pi * s.radius**2 if dim == 2 else 4 / 3 * math.pi * s.radius**3
+        if s.box is None:
+            n, box = s.n, ((s.n * per_particle / s.packing_fraction) ** (1 / dim),) * dim
+        else:
+            n, box = s.n or round(s.packing_fraction * math.prod(s.box) / per_particle), s.box
+        walls = 0 if self.walls is None else 2 * math.prod(max(1, round(box[a] / self.walls.spacing)) for a in range(0, dim, 2))
+        needed = memory_estimate(n + walls, box, s.radius, self.langevin().skin)  # also checks the engine's scalars
+        what = f"{n} particles" + (f" and {walls} wall spheres" if walls else "") + (f" in a box of {list(box)}" if s.box else "")
+        self.require_memory("system.n" if s.box is None else "system.box", needed, what)
 
     def langevin(self) -> LangevinConfig:
         """The engine's configuration: its own sections, the WCA strength and the seed."""
@@ -189,7 +211,7 @@ def resolve_source(source: str) -> Path:
 def parse_override(text: str) -> tuple[str, object]:
     """``section.key=VALUE`` with VALUE in TOML syntax (a bare word is a string)."""
     key, sep, value = text.partition("=")
-    if not sep or "." not in key:
+    if not sep or "." not in key or not all(part.strip() for part in key.split(".")):
         raise ConfigError(f"--set {text}", "expected SECTION.KEY=VALUE", "for example --set system.n=256")
     try:
         parsed = tomllib.loads(f"value = {value}")["value"]
@@ -201,7 +223,13 @@ def parse_override(text: str) -> tuple[str, object]:
 def load_config(path: Path, overrides: list[tuple[str, object]] = ()) -> RunConfig:
     """Read, override (``section.key`` paths) and validate a configuration (no files written)."""
     try:
-        data = tomllib.loads(path.read_text())
+        data = tomllib.loads(path.read_text(encoding="utf-8-sig"))
+    except UnicodeDecodeError as error:
+        raise ConfigError(
+            str(path), f"not UTF-8 text (byte {error.start} is {error.object[error.start : error.start + 1]!r})", "save it as UTF-8 TOML"
+        ) from error
+    except OSError as error:
+        raise ConfigError(str(path), f"cannot be read: {error.strerror or error}", "give a readable TOML file") from error
     except tomllib.TOMLDecodeError as error:
         raise ConfigError(str(path), f"not valid TOML: {error}", "fix the syntax at that line") from error
     for key, value in overrides:
@@ -212,9 +240,7 @@ def load_config(path: Path, overrides: list[tuple[str, object]] = ()) -> RunConf
             if not isinstance(table, dict):
                 raise ConfigError(key, f"{section} is not a table", "override a key inside a section, e.g. system.n")
         table[name] = value
-    config = structure(RunConfig, {"system": {}, **data})
-    config.langevin()  # checks the engine's own scalars (system.epsilon, run.seed) once
-    return config
+    return structure(RunConfig, {"system": {}, **data})
 
 
 def check_fraction(key: str, fraction: float, s: System) -> None:

@@ -7,7 +7,9 @@ for 10 t0 (the first t0 equilibrates from a lattice), once with the frictional n
 and once without it. With the noise both effective temperatures equal kT; without it the friction
 cools the system, translation and rotation to different T_eff (about 0.82 and 0.69 kT).
 
-Writes ``histograms.png``, ``temperatures.png`` and ``summary.json`` into the output folder.
+Writes ``histograms.png``, ``temperatures.png`` and ``summary.json`` into the output folder: checked
+before the runs (writable; a ``summary.json`` there that the demo did not write is refused, an
+earlier demo's files are replaced).
 """
 
 from __future__ import annotations
@@ -18,7 +20,9 @@ import time
 from contextlib import closing
 from pathlib import Path
 
+from ..errors import ConfigError
 from ..langevin.thermostat_check import passive_check, passive_run
+from .outputs import check_folder, dumps
 from .plots import histogram_figure, temperature_figure
 from .progress import ProgressBar
 
@@ -29,14 +33,16 @@ DEMO = {"law": "coulomb_newton", "calculus": "ito", "dim": 2, "n": 512, "phi": 0
 def run_demo(folder: Path, **changes) -> dict:
     """Run the demo (``changes`` override entries of :data:`DEMO`), write its files, return the summary."""
     setup = {**DEMO, **changes}
-    steps = int(round(setup["total_time"] / setup["dt"]))
+    checks = [passive_check(**setup, contact_noise=noise) for noise in (True, False)]
+    check_demo_folder(folder)
+    steps = checks[0].steps
     clock = time.perf_counter()
     runs = []
     with closing(ProgressBar(2 * steps, "fricgen demo")) as bar:
-        for index, noise in enumerate((True, False)):
+        for index, check in enumerate(checks):
             bar.offset = index * steps
-            bar.describe(f"fricgen demo: {'with' if noise else 'without'} contact noise")
-            runs.append(passive_run(passive_check(**setup, contact_noise=noise), observers=[bar]))
+            bar.describe(f"fricgen demo: {'with' if check.law.contact_noise else 'without'} contact noise")
+            runs.append(passive_run(check, observers=[bar]))
     folder.mkdir(parents=True, exist_ok=True)
     files = [histogram_figure(runs, folder / "histograms.png"), temperature_figure(runs, folder / "temperatures.png")]
     summary = {
@@ -56,8 +62,21 @@ def run_demo(folder: Path, **changes) -> dict:
         "seconds": time.perf_counter() - clock,
         "files": [path.name for path in files] + ["summary.json"],
     }
-    (folder / "summary.json").write_text(json.dumps(summary, indent=2))
+    (folder / "summary.json").write_text(dumps(summary))
     return summary
+
+
+def check_demo_folder(folder: Path) -> None:
+    """The demo can write into ``folder`` without losing another command's files (ConfigError at --out)."""
+    check_folder(folder, "--out")
+    summary = folder / "summary.json"
+    if summary.exists():
+        try:
+            ours = "with_contact_noise" in json.loads(summary.read_text()).get("runs", {})
+        except (OSError, ValueError, AttributeError, TypeError):
+            ours = False
+        if not ours:
+            raise ConfigError("--out", f"{folder} holds a summary.json that the demo did not write", "give another folder")
 
 
 def describe(summary: dict, folder: Path) -> str:

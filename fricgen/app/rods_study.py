@@ -1,9 +1,14 @@
 """One BCD study as the ``fricgen bcd`` command runs it: equilibrate, sample, compare with the exact
-theory, write the profile (CSV), a plot against the theory (PNG) and a summary (dict for JSON)."""
+theory, write the profile (CSV), a plot against the theory (PNG) and a summary (dict for JSON).
+
+Everything that can be checked is checked before the Monte Carlo start: the :class:`Study` (times,
+replicas, gap bins), the output folder and the exact theory (the field, the pair potential, sigma on
+the theory's grid), which is computed first."""
 
 from __future__ import annotations
 
 import time
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -20,8 +25,30 @@ from ..rods import (
     field_energy,
     rod_profile,
 )
+from ..schema import Section
+from .outputs import check_folder
 
 REFINEMENT = 4  # --extrapolate: a second run at dt / 4
+
+
+@dataclass(frozen=True)
+class Study(Section):
+    """A BCD study: ``config``, sampled for ``time`` per replica after ``equilibrate`` time units of BCD
+    (from the Monte Carlo start), and with ``extrapolate`` once more at dt / REFINEMENT. Its profiles
+    need 2 replicas or more (the errors) and the gap bins of the contact fit."""
+
+    config: RodConfig
+    time: float = field(default=1.25, metadata={"key": "--time"})
+    equilibrate: float = field(default=0.25, metadata={"key": "--equilibrate"})
+    extrapolate: bool = False
+
+    def __post_init__(self):
+        self.require_positive("time")
+        self.require_nonnegative("equilibrate")
+        c = self.config
+        finest = c.numerics.dt / (REFINEMENT if self.extrapolate else 1)
+        self.require_steps("time", (self.time + self.equilibrate) / finest)
+        c.require_sampling()
 
 
 def _sample(config: RodConfig, duration: float, equilibration: float) -> RodProfiles:
@@ -31,15 +58,17 @@ def _sample(config: RodConfig, duration: float, equilibration: float) -> RodProf
     return simulation.run(max(1, round(duration / config.numerics.dt)))
 
 
-def study(config: RodConfig, duration: float, equilibration: float, out: Path, extrapolate: bool = False) -> dict:
-    """Run, compare and write ``profile.csv``, ``profile.png`` and return the summary."""
+def study(plan: Study, out: Path) -> dict:
+    """Run, compare and write ``profile.csv``, ``profile.png`` into ``out`` and return the summary."""
+    config, duration, equilibration, extrapolate = plan.config, plan.time, plan.equilibrate, plan.extrapolate
+    check_folder(out, "--out")
+    exact = exact_profile(config)
     start = time.perf_counter()
     measured = _sample(config, duration, equilibration)
     if extrapolate:
         fine = _sample(config.replace(dt=config.numerics.dt / REFINEMENT), duration, equilibration)
         measured = extrapolate_to_zero_dt(measured, fine, REFINEMENT)
     seconds = time.perf_counter() - start
-    exact = exact_profile(config)
     summary = {
         **deviations(measured, exact, contact=config.model.hard_rods),
         "steps": measured.steps,

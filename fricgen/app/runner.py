@@ -11,7 +11,6 @@ touched. Exit status: 0 done, 1 the simulation blew up, 2 a bad configuration, 1
 
 from __future__ import annotations
 
-import json
 import shlex
 import sys
 import time
@@ -28,6 +27,7 @@ from ..schema import differences
 from .build import build
 from .config import OBSERVABLES, RunConfig, load_config, parse_override, resolve_source
 from .observables import Periodic, observable_table, read_table, series_summary, truncate_table
+from .outputs import check_folder, dumps
 from .progress import ProgressBar, RunInterrupted, StopOnInterrupt
 
 CHECKPOINT, TRAJECTORY, SUMMARY, CONFIG = "checkpoint.npz", "trajectory.gsd", "summary.json", "config.json"
@@ -54,6 +54,7 @@ def plan(source: str, settings: list[str], steps: int | None, out: str | None, r
     command += ["--steps", str(steps)] if steps is not None else []
     if resume is None:
         folder = Path(out) if out else Path(f"fricgen-{path.stem}")
+        check_folder(folder, "--out")
         taken = [name for name in RUN_FILES if (folder / name).exists()]
         if taken:
             raise ConfigError(
@@ -67,6 +68,7 @@ def plan(source: str, settings: list[str], steps: int | None, out: str | None, r
         raise ConfigError("--resume", f"no checkpoint file {checkpoint}", "give the checkpoint.npz of the interrupted run")
     if out and Path(out).resolve() != checkpoint.parent.resolve():
         raise ConfigError("--out", f"{out} is not the folder of the checkpoint {checkpoint}", "leave --out away when resuming")
+    check_folder(checkpoint.parent, "--resume")
     fresh = build(config)
     try:
         simulation = load_checkpoint(checkpoint)
@@ -107,7 +109,7 @@ def execute(plan: Plan, as_json: bool = False) -> int:
     folder.mkdir(parents=True, exist_ok=True)
     if plan.resumed:
         _continue_from(folder, start)
-    (folder / CONFIG).write_text(json.dumps({"command": plan.command, **config.as_dict()}, indent=2))
+    (folder / CONFIG).write_text(dumps({"command": plan.command, **config.as_dict()}))
     writers = [observable_table(name, folder, simulation.particles, o.profile_bins) for name in o.observables]
     periods = [o.period] * len(writers)
     if o.trajectory_period:
@@ -141,8 +143,8 @@ def execute(plan: Plan, as_json: bool = False) -> int:
         )
         return 130
     summary = summarize(config, simulation, folder, time.perf_counter() - clock)
-    (folder / SUMMARY).write_text(json.dumps(summary, indent=2))
-    print(json.dumps(summary, indent=2) if as_json else _describe(summary, folder))
+    (folder / SUMMARY).write_text(dumps(summary))
+    print(dumps(summary) if as_json else _describe(summary, folder))
     return 0
 
 

@@ -13,6 +13,7 @@ import numpy as np
 
 from ..errors import ConfigError
 from ..rng import INITIAL, WALL_ROUGHNESS, normals
+from .pairs import PAIR_FIELDS, WCA_RANGE
 
 
 @dataclass(frozen=True)
@@ -87,6 +88,33 @@ LATTICE_LIMIT = {2: math.pi / 4, 3: math.pi / 6}
 
 RANDOM_LIMIT = {2: 0.4, 3: 0.25}
 """Random starts above this fraction are refused (random sequential addition jams near 0.547 and 0.38)."""
+
+BYTES_PER_PARTICLE, BYTES_PER_NEIGHBOUR = 1024, 8 * (2 + PAIR_FIELDS)
+"""Memory of a run per particle (properties, state, the integrator's force terms and copies) and per
+entry of its full Verlet list (the neighbour, its reverse slot and its pair slot): upper estimates."""
+
+
+def lattice_limit(n: int, dim: int) -> float:
+    """Densest packing fraction of a lattice start of n equal spheres in a cubic box: LATTICE_LIMIT
+    when n is a square (cube), less otherwise (:func:`lattice_positions` puts ceil(n^(1/dim)) sites
+    along each axis, at least a diameter apart)."""
+    per_axis = math.ceil(n ** (1.0 / dim) - 1e-9)
+    return LATTICE_LIMIT[dim] * n / per_axis**dim
+
+
+def interaction_reach(radius: float, skin: float) -> float:
+    """Cut-off of the neighbour list of WCA spheres of ``radius``: a box needs more than twice it."""
+    return WCA_RANGE * 2 * radius + skin
+
+
+def memory_estimate(n: int, box: tuple[float, ...], radius: float, skin: float) -> float:
+    """Bytes that a run of n spheres in a periodic box of lengths ``box`` (2 or 3) needs, estimated
+    from above before anything is allocated: per particle, per neighbour and per cell of the cell list."""
+    reach = interaction_reach(radius, skin)
+    ball = math.pi * reach**2 if len(box) == 2 else 4 / 3 * math.pi * reach**3
+    neighbours = min(n, n * ball / math.prod(box) + 1)
+    cells = math.prod(max(1.0, length / reach) for length in box)
+    return n * (BYTES_PER_PARTICLE + BYTES_PER_NEIGHBOUR * neighbours) + 16 * cells
 
 
 def lattice_positions(n: int, lengths: np.ndarray, dim: int, min_spacing: float) -> np.ndarray:

@@ -10,6 +10,7 @@ kT within ``z_limit`` standard errors and both KL divergences are below ``kl_lim
 from __future__ import annotations
 
 import dataclasses
+import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass, field
@@ -18,13 +19,20 @@ from ..schema import Section
 from .analysis import Sampler, block_estimate, kl_divergence
 from .config import LangevinConfig, Law, Thermostat
 from .simulation import Simulation
-from .system import Particles, lattice_state
+from .system import CLOSE_PACKING, Particles, interaction_reach, lattice_limit, lattice_state, memory_estimate
+
+#: Spheres and packing fraction of the check when not given, per dimension (the paper's passive check).
+DEFAULT_N, DEFAULT_PHI = {2: 256, 3: 216}, {2: 0.6, 3: 0.3}
+#: The spheres of the check: radius and mass (I = 2/5 m R^2).
+RADIUS, MASS = 0.5, 1.0
 
 
 @dataclass(frozen=True)
 class PassiveCheck(Section):
     """The set-up of a check: ``law`` and ``thermostat`` sections, dimension ``dim``, ``n`` spheres
-    (default 256 in 2-D, 216 in 3-D) at packing fraction ``phi`` (default 0.6 / 0.3), ``total_time``
+    (default 256 in 2-D, 216 in 3-D; at least 2, in a box wider than twice the interaction range, and
+    within the machine's memory) at packing fraction ``phi`` (default 0.6 / 0.3; below close packing
+    and the lattice start's limit, see fricgen.langevin.system.lattice_limit), ``total_time``
     in t0 (the first 10 % equilibrate from a lattice), noise ``seed``, the verdict's ``z_limit``
     (standard errors) and ``kl_limit``, and a sample every ``every`` steps (default 0.05 t0)."""
 
@@ -44,11 +52,46 @@ class PassiveCheck(Section):
         self.require(self.n is None or self.n >= 2, "n", f"needs at least 2 spheres, got {self.n}", "give n >= 2")
         self.require(self.phi is None or 0 < self.phi < 1, "phi", f"must be in (0, 1), got {self.phi}", "give a packing fraction")
         self.require_positive("total_time", "z_limit", "kl_limit")
+        self.require(self.every is None or self.every >= 1, "every", f"must be >= 1, got {self.every}", "give the steps between samples")
+        self.require_steps("total_time", self.total_time / self.thermostat.dt)
         self.require(self.steps >= 20, "total_time", f"{self.total_time} t0 is under 20 steps of dt", "give a longer time")
+        n, phi, dim = self.size, self.fraction, self.dim
+        densest, lattice = CLOSE_PACKING[dim], lattice_limit(n, dim)
+        self.require(phi < densest, "phi", f"{phi:g} is impossible: close packing is {densest:.4f} in {dim}-D", "give a smaller value")
+        self.require(
+            phi < lattice,
+            "phi",
+            f"{phi:g} is too dense for the lattice start of {n} spheres (at most {lattice:.4f} in {dim}-D)",
+            "give a smaller value",
+        )
+        side = (n * (math.pi / 4 if dim == 2 else math.pi / 6) * (2 * RADIUS) ** dim / phi) ** (1 / dim)
+        config = self.langevin()  # checks the seed
+        self.require_memory("n", memory_estimate(n, (side,) * dim, RADIUS, config.skin), f"{n} spheres")
+        smallest = 2 * interaction_reach(RADIUS, config.skin)
+        self.require(
+            side > smallest,
+            "n",
+            f"{n} spheres at packing fraction {phi:g} fill a box of side {side:.3g}, under twice the interaction range ({smallest:.3g})",
+            f"give n >= {math.floor(n * (smallest / side) ** dim) + 1}",
+        )
 
     @property
     def steps(self) -> int:
         return int(round(self.total_time / self.thermostat.dt))
+
+    @property
+    def size(self) -> int:
+        """The number of spheres (``n``, or the default of the dimension)."""
+        return DEFAULT_N[self.dim] if self.n is None else self.n
+
+    @property
+    def fraction(self) -> float:
+        """The packing fraction (``phi``, or the default of the dimension)."""
+        return DEFAULT_PHI[self.dim] if self.phi is None else self.phi
+
+    def langevin(self) -> LangevinConfig:
+        """The engine's configuration of the check."""
+        return LangevinConfig(law=self.law, thermostat=self.thermostat, seed=self.seed)
 
 
 def passive_check(law: str, solvent: bool = True, **options) -> PassiveCheck:
@@ -89,9 +132,9 @@ def passive_run(check: PassiveCheck, observers: Sequence[Callable[[Simulation], 
     ``observers`` are called after every chunk of the equilibration and of the sampling."""
     start = time.perf_counter()
     kT, dt, dim = check.thermostat.kT, check.thermostat.dt, check.dim
-    particles = Particles.spheres(check.n or (256 if dim == 2 else 216))
-    state = lattice_state(particles, dim, check.phi or (0.6 if dim == 2 else 0.3), kT=kT, seed=check.seed)
-    simulation = Simulation(LangevinConfig(law=check.law, thermostat=check.thermostat, seed=check.seed), particles, state)
+    particles = Particles.spheres(check.size, RADIUS, MASS)
+    state = lattice_state(particles, dim, check.fraction, kT=kT, seed=check.seed)
+    simulation = Simulation(check.langevin(), particles, state)
     steps = check.steps
     every = check.every or max(1, int(round(0.05 / dt)))
     simulation.run(steps // 10, every=steps // 10 or 1, observers=observers)  # equilibration from the lattice start

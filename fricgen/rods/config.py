@@ -14,6 +14,10 @@ from dataclasses import dataclass, field
 
 from ..schema import Section, flat_fields
 
+#: Memory per rod and replica (positions and the BCD work arrays) and per histogram bin and replica
+#: (counts and the profiles derived from them), in bytes: upper estimates.
+BYTES_PER_ROD, BYTES_PER_BIN = 160, 32
+
 
 @dataclass(frozen=True)
 class RodModel(Section):
@@ -47,7 +51,7 @@ class RodModel(Section):
         self.require(self.n >= 2, "n", f"needs at least 2 rods, got {self.n}", "give n >= 2")
         self.require(self.length > 0 and not math.isnan(self.length), "length", f"must be positive, got {self.length}", "give L > 0")
         self.require_positive("sigma", "wavelength", "kT", "mu", "eps")
-        for name in ("U0", "drive", "gamma", "pair_range"):
+        for name in ("U0", "drive", "gamma", "p", "pair_range"):
             self.require(math.isfinite(getattr(self, name)), name, f"must be finite, got {getattr(self, name)}", "give a number")
         self.require(
             self.n * self.sigma < self.length,
@@ -57,20 +61,18 @@ class RodModel(Section):
         )
         whole = self.open_line or abs(self.length / self.wavelength - round(self.length / self.wavelength)) <= 1e-9
         self.require(whole, "length", "the ring length must be a whole number of wavelengths", "change length or wavelength")
-        self.require(
-            self.gamma >= 0 and self.p > 1 and self.eps < self.sigma,
-            "gamma",
-            f"need gamma >= 0, p > 1 (continuous force, B-31) and eps < sigma, got {self.gamma}, {self.p}, {self.eps}",
-            "fix the sticky contact",
-        )
+        self.require(self.gamma >= 0, "gamma", f"must be >= 0 (0: hard rods), got {self.gamma}", "fix the sticky contact")
+        self.require(self.p > 1, "p", f"need p > 1 (a continuous force, B-31), got {self.p}", "fix the sticky contact")
+        self.require(self.eps < self.sigma, "eps", f"must be below sigma = {self.sigma}, got {self.eps}", "fix the sticky contact")
         self.require(
             not {"U0", "lambda"} & set(self.field_params),
             "field_params",
             "set the field's amplitude and period with U0 and wavelength, not field_params",
             "remove them here",
         )
-        values = (*self.field_params.values(), *self.pair_params.values())
-        self.require(all(map(math.isfinite, values)), "field_params", "field and pair parameters must be finite numbers", "fix them")
+        for name in ("field_params", "pair_params"):
+            values = getattr(self, name)
+            self.require(all(map(math.isfinite, values.values())), name, f"must be finite numbers, got {values}", "fix them")
         self.require(
             self.pair is not None or not (self.pair_params or self.pair_range),
             "pair_range",
@@ -117,6 +119,7 @@ class RodNumerics(Section):
         self.require_positive("dt")
         self.require(0 <= self.seed < 2**63, "seed", f"must be an integer in [0, 2^63), got {self.seed}", "give a non-negative integer")
         self.require(self.start_sweeps >= 0, "start_sweeps", f"must be >= 0, got {self.start_sweeps}", "give 0 or more")
+        self.require_steps("start_sweeps", self.start_sweeps)
 
 
 @dataclass(frozen=True)
@@ -133,8 +136,9 @@ class RodSampling(Section):
     fit_bins: int = 8
 
     def __post_init__(self):
-        for name in ("replicas", "bins", "gap_bins", "fit_bins"):
+        for name in ("replicas", "bins", "gap_bins"):
             self.require(getattr(self, name) >= 1, name, f"must be >= 1, got {getattr(self, name)}", "give a positive integer")
+        self.require(self.fit_bins >= 2, "fit_bins", f"must be >= 2 (two windows of fit_bins / 2), got {self.fit_bins}", "give 8, say")
         self.require_positive("gap_width")
 
 
@@ -153,6 +157,40 @@ class RodConfig(Section):
             "an open line (length = inf) has no equilibrium to start from",
             "set start_sweeps = 0 and give positions",
         )
+        m, r = self.model, self.sampling
+        needed = r.replicas * (m.n * BYTES_PER_ROD + r.bins * (r.gap_bins + 1) * BYTES_PER_BIN)
+        growth = {
+            "model.n": m.n / RodModel.n,
+            "sampling.replicas": r.replicas / RodSampling.replicas,
+            "sampling.bins": r.bins / RodSampling.bins,
+            "sampling.gap_bins": r.gap_bins / RodSampling.gap_bins,
+        }
+        key = max(growth, key=growth.get)  # the size furthest above its default
+        what = f"{r.replicas} replicas of {m.n} rods with {r.bins} x {r.gap_bins + 1} histogram bins each"
+        self.require_memory(key, needed, what)
+
+    def require_sampling(self) -> None:
+        """Sampling profiles needs replicas >= 2 (the errors are their scatter) and enough gap bins
+        for the contact density's fit at this dt; ConfigError otherwise."""
+        replicas = self.sampling.replicas
+        self.require(
+            replicas >= 2,
+            "sampling.replicas",
+            f"must be >= 2 (the errors come from the scatter between independent replicas), got {replicas}",
+            "give 16 (replicas >= 2; 8 or more for chi^2)",
+        )
+        self.require(
+            self.contact_fit_bins() <= self.sampling.gap_bins,
+            "sampling.gap_bins",
+            f"gap_bins = {self.sampling.gap_bins} is too few: the contact fit needs {self.contact_fit_bins()} at dt = {self.numerics.dt:g}",
+            "raise it, or gap_width",
+        )
+
+    def contact_fit_bins(self) -> int:
+        """Gap bins that the contact density's fit needs at this dt (fricgen.rods.simulation): the BCD
+        layer of width about 3 sqrt(4 D dt), then two windows of fit_bins / 2."""
+        layer = 1 + math.ceil(3 * math.sqrt(4 * self.model.diffusion * self.numerics.dt) / self.sampling.gap_width)
+        return layer + 2 * (self.sampling.fit_bins // 2)
 
     def replace(self, **changes) -> RodConfig:
         """A copy with flat fields changed (e.g. ``dt``)."""

@@ -124,10 +124,7 @@ class RodSimulation:
         m, c = self.config.model, self.config.sampling
         if m.open_line:
             raise ConfigError("model.length", "profiles need a ring of finite length", "on an open line use advance() and positions")
-        if c.replicas < 2:
-            raise ConfigError(
-                "sampling.replicas", "errors come from the scatter between independent replicas", "need replicas >= 2 (8 or more for chi^2)"
-            )
+        self.config.require_sampling()
         if steps < 1:
             raise ConfigError("steps", f"need at least one step, got {steps}", "sample longer")
         width = m.wavelength / c.bins
@@ -151,15 +148,9 @@ class RodSimulation:
         Beyond the BCD layer, g >= g0, the mean pair densities A and B over two windows
         [g0, g0 + d) and [g0 + d, g0 + 2d) fix rho_2(g) = rho_2(0) exp(-k g): k = ln(A / B) / d,
         rho_2(0) = A exp(k g0) (k d) / (1 - exp(-k d)). Errors by jackknife over the replicas."""
-        c, dt = self.config.sampling, self.config.numerics.dt
-        first = 1 + math.ceil(3 * math.sqrt(4 * self.config.model.diffusion * dt) / c.gap_width)
+        c = self.config.sampling
         half = c.fit_bins // 2
-        if first + 2 * half > c.gap_bins:
-            raise ConfigError(
-                "sampling.gap_bins",
-                f"gap_bins = {c.gap_bins} is too few: the contact fit needs {first + 2 * half} gap bins at dt = {dt}",
-                "raise it",
-            )
+        first = self.config.contact_fit_bins() - 2 * half  # RodConfig checked that gap_bins suffice
         start, span = (first - 1) * c.gap_width, half * c.gap_width
         windows = pair_density[:, :, first : first + 2 * half].reshape(*pair_density.shape[:2], 2, half).mean(-1)
 

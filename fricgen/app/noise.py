@@ -1,0 +1,74 @@
+"""``fricgen noise``: D(u) and f(u) of a catalogue law through its generated kernels.
+
+:class:`NoiseQuery` is the command's input, each number checked once (keys are the flags). The
+result is refused (ConfigError, exit status 2) when a value the kernels return is not finite, for
+inputs that overflow double precision (``--param gamma_f=1e308``), so JSON output stays JSON.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from ..errors import ConfigError
+from ..kernels import load_law_kernels
+from ..schema import Section
+
+
+@dataclass(frozen=True)
+class NoiseQuery(Section):
+    """Speeds ``u`` (>= 0), the contact as centre distance ``r`` (> 0; w = w(r) from the law's weight)
+    or as weight ``w`` (>= 0), contact mobility ``mu`` and ``kT`` (> 0), all finite."""
+
+    u: tuple[float, ...] = field(metadata={"key": "--u"})
+    r: float | None = field(default=None, metadata={"key": "--r"})
+    w: float | None = field(default=None, metadata={"key": "--w"})
+    mu: float = field(default=7.0, metadata={"key": "--mu"})
+    kT: float = field(default=1.0, metadata={"key": "--kT"})
+
+    def __post_init__(self):
+        self.require(len(self.u) > 0, "u", "needs at least one speed", "give --u U1,U2,...")
+        bad = [x for x in self.u if not (math.isfinite(x) and x >= 0)]
+        self.require(not bad, "u", f"speeds must be finite and >= 0, got {bad[0] if bad else None}", "give speeds u >= 0")
+        self.require(
+            self.r is None or (math.isfinite(self.r) and self.r > 0), "r", f"must be positive and finite, got {self.r}", "give r > 0"
+        )
+        self.require(
+            self.w is None or (math.isfinite(self.w) and self.w >= 0), "w", f"must be >= 0 and finite, got {self.w}", "give w >= 0"
+        )
+        self.require_positive("mu", "kT")
+
+
+def evaluate(law: str, calculus: str, query: NoiseQuery, parameters: dict[str, float]) -> dict:
+    """D and f at each speed, with the contact (w, r, mu, kT) and the law's parameters."""
+    kernels = load_law_kernels(law)
+    params = kernels.parameters(**parameters)
+    amplitude = kernels.noise_amplitude(calculus)
+    if kernels.has_weight and query.r is None and query.w is None:
+        raise ConfigError("--r", f"law {law} has a weight w(r): give --r R (centre distance) or --w W (weight value)")
+    r = 1.0 if query.r is None else query.r
+    w = query.w if query.w is not None else (float(kernels.weight(r, params)) if kernels.has_weight else 1.0)
+    if not (math.isfinite(w) and w >= 0):
+        raise ConfigError("--r", f"the law's weight w(r = {r:g}) is {w:g}, not a finite value >= 0", "give another --r, or --w")
+    d = [float(amplitude(x, w, r, query.mu, query.kT, params)) for x in query.u]
+    f = [float(kernels.friction(x, w, r, params)) for x in query.u]
+    for name, values in (("D", d), ("f", f)):
+        bad = next(((x, v) for x, v in zip(query.u, values) if not math.isfinite(v)), None)
+        if bad is not None:
+            raise ConfigError(
+                name,
+                f"is {bad[1]} at u = {bad[0]:g} (w = {w:g}): the result overflows double precision",
+                "give smaller --u, --w (or larger --r), --kT or --param values",
+            )
+    return {
+        "law": law,
+        "calculus": calculus,
+        "u": list(query.u),
+        "D": d,
+        "f": f,
+        "w": w,
+        "r": r,
+        "mu": query.mu,
+        "kT": query.kT,
+        "parameters": dict(zip(kernels.parameter_names, params.tolist())),
+    }

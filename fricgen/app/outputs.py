@@ -1,0 +1,54 @@
+"""What every command does with its outputs: check the folder before anything runs, write valid JSON.
+
+:func:`check_folder` finds an output folder that cannot be written (a file in the way, no
+permission, a read-only file system) before a simulation starts, not after it; it creates nothing.
+:func:`dumps` writes JSON as RFC 8259 defines it: a number that is not finite (a chi^2 over a zero
+error, say) becomes null, never ``NaN`` or ``Infinity``.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import tempfile
+from pathlib import Path
+
+from ..errors import ConfigError
+
+
+def check_folder(folder: Path, key: str) -> None:
+    """``folder`` is a writable folder or can be created as one; ConfigError at ``key`` (a flag such
+    as ``--out``) otherwise. Nothing is created: an unnamed file is opened and dropped in the nearest
+    folder that exists, the one the command will write into or create its folder in."""
+    try:
+        target = Path(folder).absolute()
+        if target.exists() and not target.is_dir():
+            raise ConfigError(key, f"{folder} is a file, not a folder", "give a folder")
+        existing = target
+        while not existing.exists():
+            existing = existing.parent
+        if not existing.is_dir():
+            raise ConfigError(key, f"cannot create {folder}: {existing} is a file, not a folder", "give another folder")
+        if not os.access(existing, os.W_OK | os.X_OK):
+            raise ConfigError(key, f"cannot write into {existing}: permission denied", "give a folder you can write into")
+        with tempfile.TemporaryFile(dir=existing):
+            pass
+    except OSError as error:
+        raise ConfigError(key, f"cannot write into {folder}: {error.strerror or error}", "give a folder you can write into") from error
+
+
+def finite(data):
+    """``data`` with every float that is not finite replaced by None (in dicts, lists and tuples)."""
+    if isinstance(data, float):
+        return data if math.isfinite(data) else None
+    if isinstance(data, dict):
+        return {key: finite(value) for key, value in data.items()}
+    if isinstance(data, list | tuple):
+        return [finite(value) for value in data]
+    return data
+
+
+def dumps(data) -> str:
+    """Valid JSON of ``data`` (indented), with null for numbers that are not finite."""
+    return json.dumps(finite(data), indent=2, allow_nan=False)
