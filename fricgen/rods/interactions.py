@@ -19,14 +19,12 @@ from ..kernels import load_potential
 from .config import RodModel
 
 
-def _parameters(module: ModuleType, given: dict[str, float], fixed: dict[str, float]) -> np.ndarray:
+def _parameters(module: ModuleType, given: dict[str, float], fixed: dict[str, float], key: str) -> np.ndarray:
     """Parameter values of a generated module in the order of its PARAMETERS: ``fixed`` (where it has
-    them), else ``given``, else its defaults."""
+    them), else ``given`` (the configuration's ``key``), else its defaults."""
     unknown = sorted(set(given) - set(module.PARAMETERS))
     if unknown:
-        raise ConfigError(
-            "parameters", f"{module.NAME!r} has no parameter(s) {unknown}; its parameters are {module.PARAMETERS}", "fix the names"
-        )
+        raise ConfigError(key, f"{module.NAME!r} has no parameter(s) {unknown}; its parameters are {module.PARAMETERS}", "fix the names")
     values = dict(zip(module.PARAMETERS, module.DEFAULTS)) | given | fixed
     return np.array([float(values[name]) for name in module.PARAMETERS])
 
@@ -44,7 +42,7 @@ def field_kernels(model: RodModel) -> tuple[ModuleType, np.ndarray]:
         raise ConfigError(
             "field", f"{model.field!r} is a pair potential, not an external field U(x)", "name an external field, e.g. cosine"
         )
-    return module, _parameters(module, model.field_params, {"U0": model.U0, "lambda": model.wavelength})
+    return module, _parameters(module, model.field_params, {"U0": model.U0, "lambda": model.wavelength}, "model.field_params")
 
 
 def field_energy(model: RodModel) -> Callable[[np.ndarray], np.ndarray]:
@@ -64,7 +62,7 @@ def pair_kernels(model: RodModel) -> tuple[ModuleType, np.ndarray, float]:
     module = load_potential(c.pair)
     if hasattr(module, "force_field"):
         raise ConfigError("pair", f"{c.pair!r} is an external field, not a pair potential V(r)", "name a pair potential, e.g. wca")
-    params = _parameters(module, c.pair_params, {"kT": c.kT} if "kT" in module.PARAMETERS else {})
+    params = _parameters(module, c.pair_params, {"kT": c.kT} if "kT" in module.PARAMETERS else {}, "model.pair_params")
     beyond = c.sigma + c.pair_range + (c.sigma - c.pair_range) * np.linspace(0.0, 1.0, 401)[1:] ** 2
     if any(module.energy(r, params) != 0.0 or module.force(r, params) != 0.0 for r in beyond):
         raise ConfigError(

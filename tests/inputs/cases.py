@@ -330,7 +330,7 @@ bcd --pair wca --pair-range 0.12 --pair-param sigma=inf | --pair-param | must be
 bcd --pair cosine --pair-range 0.12 | --pair | an external field, not a pair potential
 bcd --field wca | --field | a pair potential, not an external field
 bcd --field sawtooth | sawtooth | no generated potential 'sawtooth'
-bcd --field-param b=1 | parameters | no parameter(s) ['b']
+bcd --field-param b=1 | --field-param | no parameter(s) ['b']
 bcd --field-param U0=1 | --field-param | not field_params
 bcd --field ratchet --field-param a=nan | --field-param | must be finite
 bcd --field-param a | --field-param | expected NAME=VALUE
