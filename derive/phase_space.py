@@ -13,9 +13,13 @@ Everything is exact polynomial algebra: D, D' and f are kept as symbols, du/dx b
 du/dx_beta = (dQ/dx_beta) / (2u) with Q = u_perp . u_perp, and the unit normal n is reduced
 modulo n . n = 1. The lemma proven here, for arbitrary D(u) and f(u),
 
-    u (J^f + J^fn) / P_B = -C^T u_perp [f - u D + nu kT dD/du],   nu = (1 - theta) mu,
+    u (J^f + J^fn) / P_B = -C^T u_perp [f - u D + X dD/du],
 
-leaves each law with the scalar ODE (F-20).
+leaves each law with the scalar ODE (F-20). X is not assumed: it is read off the current (the
+coefficient of dD/du, a function of the symbolic masses, inertias, radii and kT) and then proven
+to hold on every component; it comes out as X = nu kT with nu = (1 - theta) mu, so the calculus
+alone (its definition F-47..49) fixes theta. The verifier uses this X, never the noise model's own
+nu kT, for the residual of each law (derive.verification).
 
 The physics: docs/physics.md#zero-probability-current-proved-symbolically.
 """
@@ -201,18 +205,70 @@ def current_per_boltzmann(space: PairPhaseSpace, calculus: str) -> sp.Matrix:
     return drift + sp.Matrix(noise)
 
 
-@cache
-def zero_current_lemma(dim: int, calculus: str) -> bool:
-    """Prove u (J^f + J^fn)/P_B + C^T u_perp [f - u D + nu kT D'] = 0 for arbitrary D(u), f(u).
+@dataclass(frozen=True)
+class Lemma:
+    """What the zero-current lemma proves for one dimension and calculus.
 
-    Exact: no simplification heuristics, only expansion and reduction modulo n . n = 1.
+    Attributes:
+        holds: u (J^f + J^fn)/P_B + C^T u_perp [f - u D + X D'] = 0 on every component, with X
+            read off the current (not assumed) and X = c kT mu for a rational number c.
+        nu_over_mu: c = nu/mu = X/(kT mu) as derived from the current (1 - theta), None if the
+            current has no such form.
+    """
+
+    holds: bool
+    nu_over_mu: sp.Rational | None
+
+    def __bool__(self) -> bool:
+        return self.holds
+
+    def nu_kT(self, mobility: sp.Expr) -> sp.Expr | None:
+        """X = nu kT for a contact of mobility ``mu`` (a symbol, number or expression)."""
+        return None if self.nu_over_mu is None else self.nu_over_mu * kT * mobility
+
+
+def derivative_coefficient(space: PairPhaseSpace, current: sp.Matrix, direction: sp.Matrix) -> sp.Expr | None:
+    """X with u J/P_B = -C^T u_perp X D' + (terms without D'), read off one component of the current.
+
+    The D' part of the (reduced) component is compared with the (reduced) direction term by term:
+    their leading coefficients as polynomials in the momenta and the normal. None when no component
+    has a nonzero direction or the leading monomials differ (then no such X exists).
+    """
+    gens = (*space.momenta, *space.normal)
+    for j, g in zip(current, direction):
+        reduced_g = space.reduce(g)
+        if reduced_g == 0:
+            continue
+        part = space.reduce(sp.expand(U_SYM * j).coeff(DD_SYM))
+        left, right = sp.Poly(part, *gens), sp.Poly(reduced_g, *gens)
+        if left.is_zero:
+            return sp.Integer(0)
+        if left.LM() != right.LM():
+            return None
+        return sp.cancel(-left.LC() / right.LC())
+    return None
+
+
+@cache
+def zero_current_lemma(dim: int, calculus: str) -> Lemma:
+    """Prove u (J^f + J^fn)/P_B + C^T u_perp [f - u D + X D'] = 0 for arbitrary D(u), f(u).
+
+    X is read off the current (:func:`derivative_coefficient`) and must equal c kT mu with a
+    rational c; the identity is then proven on every component. Exact: no simplification
+    heuristics for the identity, only expansion and reduction modulo n . n = 1.
     """
     space = pair_phase_space(dim)
     current = current_per_boltzmann(space, calculus)
-    nu = (1 - CALCULI_THETA[calculus]) * space.mobility
-    residual = F_SYM - U_SYM * D_SYM + nu * kT * DD_SYM
     direction = space.contact_map.T * tangential_velocity(space)
-    return all(space.reduce(U_SYM * j + g * residual) == 0 for j, g in zip(current, direction))
+    coefficient = derivative_coefficient(space, current, direction)
+    if coefficient is None:
+        return Lemma(False, None)
+    ratio = sp.simplify(coefficient / (kT * space.mobility))
+    if not ratio.is_Rational:
+        return Lemma(False, None)
+    residual = F_SYM - U_SYM * D_SYM + ratio * space.mobility * kT * DD_SYM
+    holds = all(space.reduce(U_SYM * j + g * residual) == 0 for j, g in zip(current, direction))
+    return Lemma(holds, ratio)
 
 
 @cache

@@ -1,21 +1,35 @@
-"""Verification of a noise model: each check is an exact symbolic fact (plus a numeric confirmation).
+"""Verification of a noise model: each check is an exact symbolic fact (plus numeric confirmations).
 
 Checks of :func:`verify` (names as in the report and in ``fricgen verify --json``):
 
-- ``ode_residual``: nu kT dD/du - u D + f simplifies to exactly 0 on every branch of u, and D is
-  continuous at the branch points (a jump would put a delta function into dD/du). For the
-  integral form (F-22) SymPy differentiates under the integral sign (Leibniz rule).
+- ``ode_residual``: X dD/du - u D + f simplifies to exactly 0 on every branch of u, and D is
+  continuous at the branch points (a jump would put a delta function into dD/du). X = nu kT is
+  *not* the model's own (``NoiseModel.variance_scale``, from noise.py): it is the coefficient of
+  dD/du that the zero-current lemma reads off the current of the calculus on the pair phase space
+  (symbolic masses, inertias, radii and kT; theta from the definitions F-47..49), times the
+  model's mobility. So a model whose D was derived with a wrong nu kT (kT dropped, the wrong
+  theta, another calculus' amplitude) fails here. For the integral form (F-22) SymPy
+  differentiates under the integral sign (Leibniz rule).
 - ``zero_current_3d`` / ``zero_current_2d``: (J^f + J^fn) P_B = 0 on the full pair phase space
   (12 resp. 6 momentum components): the current of the calculus, from its definition (F-47..49),
   equals -(residual / u) C^T u_perp for arbitrary D(u), f(u) (:mod:`derive.phase_space`), and the
-  residual vanishes.
+  residual with that dimension's X vanishes.
 - ``noise_covariance``: sigma sigma^T / 2 = kT D C^T C (F-50) for the paper's sigma_hat and for the
   random force and torque (F-24, F-25), in 3-D and 2-D.
-- ``boundary_condition``: for nu != 0, D is the decaying solution, D exp(-u^2/2kTnu) -> 0 as
-  u -> oo (the ODE alone admits adding C exp(u^2/2kTnu)); HK has no free constant.
+- ``boundary_condition``: for nu != 0, D is the decaying solution, D exp(-u^2/2X) -> 0 as
+  u -> oo (the ODE alone admits adding C exp(u^2/2X)); HK has no free constant.
 - ``nonnegative_finite``: D >= 0 and finite for u >= 0: proven from the representation (F-22)
-  (or D = f/u) with f >= 0, or by SymPy's assumptions; the limit u -> 0+ is finite; and
-  confirmed numerically on a grid of u, w (with kT = 1, mu = 7: equal spheres R = 1/2, m = 1).
+  (or D = f/u) with f >= 0, or by SymPy's assumptions; the limit u -> 0+ is finite (and >= 0 for
+  kT = 1, mu = 7, equal spheres R = 1/2, m = 1); and confirmed numerically at the reference points
+  of the kernel check (several kT, mu, w, r and parameter values, u up to 1e3 sqrt(nu kT)).
+- ``kernel_accuracy``: the noise-amplitude kernel as derive.emit prints it, run as plain Python,
+  agrees with an independent mpmath evaluation of D (the closed form at 30 digits, or (F-22) by
+  mpmath.quad with the lemma's nu kT) to a relative error below KERNEL_TOLERANCE = 1e-8, for
+  u = 0 ... 1e3 sqrt(nu kT) and several kT, mu, w, r, parameters (:mod:`derive.numeric_check`);
+  the largest error is ``details["kernel_max_rel_error"]``.
+
+The law-independent facts (lemma, covariance) are read from the on-disk cache of
+:mod:`derive.lemma_cache` when present, and proven (and stored) otherwise.
 """
 
 from __future__ import annotations
@@ -23,14 +37,14 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, field
 
-import mpmath
 import sympy as sp
 
-from . import phase_space
-from .noise import Calculus, NoiseModel, branches, integral_amplitude, numeric_amplitude
+from . import lemma_cache
+from .noise import Calculus, NoiseModel, branches, integral_amplitude
+from .numeric_check import KERNEL_TOLERANCE, kernel_accuracy, reference_points, sample_problem
 from .symbols import kT, mu, r, u, w
 
-#: Numeric values used for the sample confirmation of nonnegative_finite.
+#: Numeric values at which nonnegative_finite checks the sign of D(0+).
 SAMPLE_VALUES = {kT: 1.0, mu: 7.0, r: 1.0}
 SAMPLE_WEIGHTS = (0.05, 1.0, 60.0)
 
@@ -67,27 +81,62 @@ def verify(model: NoiseModel) -> Report:
     start = time.perf_counter()
     checks: dict[str, bool] = {}
     details: dict[str, str] = {}
-    residuals = ode_residuals(model)
-    checks["ode_residual"] = all(_is_zero(x) for x in residuals)
-    if not checks["ode_residual"]:
-        details["ode_residual"] = "nonzero: " + "; ".join(str(sp.simplify(x)) for x in residuals if not _is_zero(x))
+    scales = {dim: lemma_scale(model, dim) for dim in (3, 2)}
+    a = scales[3]
+    if a is None:
+        checks["ode_residual"] = False
+        details["ode_residual"] = "the zero-current lemma gives no nu kT for this calculus"
+    else:
+        details["nu_kT"] = str(a)
+        nonzero = [x for x in map(_reduced, ode_residuals(model, a)) if x != 0]
+        checks["ode_residual"] = not nonzero
+        if nonzero:
+            details["ode_residual"] = "nonzero: " + "; ".join(map(str, nonzero))
     for dim in (3, 2):
-        lemma = phase_space.zero_current_lemma(dim, model.calculus.value)
-        checks[f"zero_current_{dim}d"] = lemma and checks["ode_residual"]
-    identities = {f"{d}d_{k}": v for d in (3, 2) for k, v in phase_space.covariance_identities(d).items()}
+        lemma = lemma_cache.zero_current(dim, model.calculus.value)
+        same = scales[dim] is not None and a is not None and sp.simplify(scales[dim] - a) == 0
+        checks[f"zero_current_{dim}d"] = lemma.holds and checks["ode_residual"] and same
+    identities = {f"{d}d_{k}": v for d in (3, 2) for k, v in lemma_cache.covariance(d).items()}
     checks["noise_covariance"] = all(identities.values())
     if not checks["noise_covariance"]:
         details["noise_covariance"] = f"failed: {[k for k, v in identities.items() if not v]}"
-    checks["boundary_condition"] = _decays(model)
-    checks["nonnegative_finite"], why = _nonnegative_finite(model, checks)
+    checks["boundary_condition"] = a is not None and _decays(model, a)
+    points = reference_points(model, a if a is not None else model.variance_scale)
+    checks["nonnegative_finite"], why = _nonnegative_finite(model, checks, points)
     if why:
         details["nonnegative_finite"] = why
+    error, where = kernel_accuracy(model, points)
+    checks["kernel_accuracy"] = error <= KERNEL_TOLERANCE
+    details["kernel_max_rel_error"] = f"{error:.2e}"
+    if not checks["kernel_accuracy"]:
+        details["kernel_accuracy"] = f"relative error {error:.2e} > {KERNEL_TOLERANCE:.0e} at {where}"
     return Report(model.law.name, model.calculus.value, model.closed_form, checks, details, time.perf_counter() - start)
 
 
+def lemma_scale(model: NoiseModel, dim: int = 3) -> sp.Expr | None:
+    """nu kT of the model's calculus as the zero-current lemma derives it on the ``dim``-D pair phase
+    space (independently of noise.py), for the model's contact mobility; None if the lemma fails."""
+    return lemma_cache.zero_current(dim, model.calculus.value).nu_kT(model.mobility)
+
+
+def _reduced(expr: sp.Expr) -> sp.Expr:
+    """``expr`` simplified, 0 exactly when it vanishes identically.
+
+    Each distinct unevaluated Integral (the representation F-22, after differentiation under the
+    integral sign) is treated as an independent symbol while simplifying. That is sound (zero for
+    every value of the symbol implies zero), and exact for the residuals of this module, in which
+    the integral enters linearly; it spares SymPy's simplify from working on integrals, which is
+    slow when the expression is not zero.
+    """
+    integrals = {i: sp.Dummy("integral") for i in expr.atoms(sp.Integral)}
+    cheap = sp.expand(sp.powsimp(sp.expand(expr.xreplace(integrals))))
+    if cheap != 0:
+        cheap = sp.simplify(cheap)
+    return cheap.xreplace({d: i for i, d in integrals.items()})
+
+
 def _is_zero(expr: sp.Expr) -> bool:
-    cheap = sp.expand(sp.powsimp(sp.expand(expr)))
-    return cheap == 0 or sp.simplify(cheap) == 0
+    return _reduced(expr) == 0
 
 
 def _pieces(expr: sp.Expr) -> list:
@@ -122,22 +171,24 @@ def _at(pieces: list, probe: sp.Expr) -> sp.Expr:
     raise ValueError(f"no branch contains u = {probe}")
 
 
-def ode_residuals(model: NoiseModel) -> list[sp.Expr]:
-    """Residuals nu kT D' - u D + f per interval, then jumps of D at interior branch points."""
+def ode_residuals(model: NoiseModel, a: sp.Expr | None = None) -> list[sp.Expr]:
+    """Residuals a D' - u D + f per interval, then jumps of D at interior branch points; a = nu kT
+    from the zero-current lemma (:func:`lemma_scale`) unless given."""
     intervals = _intervals(model)
-    a = model.variance_scale
+    a = lemma_scale(model) if a is None else a
+    if a is None:
+        raise ValueError(f"the zero-current lemma gives no nu kT for the {model.calculus.value} calculus")
     residuals = [a * sp.diff(d, u) - u * d + f for _, _, d, f in intervals]
     for (_, point, left, _), (_, _, right, _) in zip(intervals, intervals[1:]):
         residuals.append(left.subs(u, point) - right.subs(u, point))
     return residuals
 
 
-def _decays(model: NoiseModel) -> bool:
-    if model.calculus is Calculus.HK:
-        return True
-    a = model.variance_scale
+def _decays(model: NoiseModel, a: sp.Expr) -> bool:
+    if a == 0:
+        return model.calculus is Calculus.HK
     if not model.closed_form:
-        return sp.simplify(model.amplitude - integral_amplitude(model.law.friction, a)) == 0
+        return _is_zero(model.amplitude - integral_amplitude(model.law.friction, a))
     last = _pieces(model.amplitude)[-1].expr
     scaled = sp.powsimp(sp.expand(last * sp.exp(-(u**2) / (2 * a))))
     try:
@@ -146,8 +197,9 @@ def _decays(model: NoiseModel) -> bool:
         return False
 
 
-def _nonnegative_finite(model: NoiseModel, checks: dict[str, bool]) -> tuple[bool, str]:
-    """D >= 0 and finite on u >= 0: symbolic argument, finite limit at 0, numeric confirmation."""
+def _nonnegative_finite(model: NoiseModel, checks: dict[str, bool], points: list) -> tuple[bool, str]:
+    """D >= 0 and finite on u >= 0: symbolic argument, finite limit at 0, numeric confirmation on the
+    reference values of the kernel check (:func:`derive.numeric_check.reference_points`)."""
     represented = checks["ode_residual"] and checks["boundary_condition"]
     proven = bool(model.amplitude.is_nonnegative) or represented  # (F-22) or f/u with f >= 0
     if not proven:
@@ -161,24 +213,5 @@ def _nonnegative_finite(model: NoiseModel, checks: dict[str, bool]) -> tuple[boo
         for weight in SAMPLE_WEIGHTS:
             if sp.N(at_zero.subs({**values, w: weight})) < 0:
                 return False, f"D(0+) = {at_zero} < 0 at w = {weight}"
-    return _samples(model, values)
-
-
-def _samples(model: NoiseModel, values: dict) -> tuple[bool, str]:
-    """D finite and >= 0 at u > 0 on a grid spanning 1e-6 ... 1e3 sqrt(kT mu) and the branch points."""
-    a = float((kT * model.mobility).subs(values))
-    grid = {a**0.5 * x for x in (1e-6, 1e-3, 0.1, 0.5, 1, 2, 5, 10, 30, 100, 1000)}
-    for weight in SAMPLE_WEIGHTS:
-        evaluate = numeric_amplitude(model, {**values, w: weight})
-        points = grid | {float(p.lower.subs({**values, w: weight})) for p in _pieces(model.amplitude)} - {0.0}
-        with mpmath.workdps(30):
-            for point in sorted(points):
-                try:
-                    value = mpmath.mpmathify(evaluate(mpmath.mpf(point)))
-                except (ZeroDivisionError, ValueError, OverflowError):
-                    return False, f"D cannot be evaluated at u = {point:g}, w = {weight}"
-                if isinstance(value, mpmath.mpc) or not mpmath.isfinite(value):
-                    return False, f"D = {value} at u = {point:g}, w = {weight}"
-                if value < 0:
-                    return False, f"D = {mpmath.nstr(value, 6)} < 0 at u = {point:g}, w = {weight}"
-    return True, ""
+    problem = sample_problem(points)
+    return not problem, problem

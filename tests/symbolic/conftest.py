@@ -1,6 +1,23 @@
+import os
+
 import pytest
 
-from derive import catalogue, derive_noise, verify
+from derive import catalogue, derive_noise, lemma_cache, verify
+
+
+@pytest.fixture(scope="session", autouse=True)
+def lemma_cache_folder(tmp_path_factory):
+    """The proofs run against a fresh lemma cache (derive.lemma_cache), not the user's, unless
+    FRICGEN_CACHE is set (e.g. to reuse a warm cache while developing). The lemmas are then proven
+    once per session: test_phase_space proves them anyway, and the in-process cache shares them."""
+    chosen = os.environ.get(lemma_cache.CACHE_ENV)
+    if not chosen:
+        os.environ[lemma_cache.CACHE_ENV] = str(tmp_path_factory.mktemp("lemma-cache"))
+    lemma_cache.clear_memory()
+    yield os.environ[lemma_cache.CACHE_ENV]
+    if not chosen:
+        os.environ.pop(lemma_cache.CACHE_ENV, None)
+    lemma_cache.clear_memory()
 
 
 @pytest.fixture(scope="session")

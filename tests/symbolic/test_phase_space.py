@@ -3,6 +3,7 @@
 import pytest
 import sympy as sp
 
+from derive import phase_space
 from derive.phase_space import (
     CALCULI_THETA,
     D_SYM,
@@ -11,6 +12,7 @@ from derive.phase_space import (
     U_SYM,
     covariance_identities,
     current_per_boltzmann,
+    derivative_coefficient,
     friction_drift,
     pair_phase_space,
     tangential_velocity,
@@ -22,7 +24,27 @@ from derive.symbols import kT
 @pytest.mark.parametrize("dim", [2, 3])
 @pytest.mark.parametrize("calculus", ["ito", "stratonovich", "hk"])
 def test_zero_current_lemma(dim, calculus):
-    assert zero_current_lemma(dim, calculus)
+    """The identity holds, and the nu kT it reads off the current is (1 - theta) mu kT (F-21), theta
+    being the calculus' own (derive.calculus): the two definitions of the calculus agree."""
+    lemma = zero_current_lemma(dim, calculus)
+    assert lemma.holds
+    assert lemma.nu_over_mu == 1 - CALCULI_THETA[calculus]
+    space = pair_phase_space(dim)
+    assert sp.simplify(lemma.nu_kT(space.mobility) - (1 - CALCULI_THETA[calculus]) * space.mobility * kT) == 0
+
+
+def test_nu_kT_is_read_off_the_current_not_assumed(monkeypatch):
+    """A noise without its kT (sigma = sqrt(D) sigma_hat, P_B still at kT) has the D' coefficient mu,
+    not mu kT: the lemma's X follows the current, X/(kT mu) is then no number and the lemma fails."""
+    space = pair_phase_space(2)
+    direction = space.contact_map.T * tangential_velocity(space)
+    current = current_per_boltzmann(space, "ito")
+    assert sp.simplify(derivative_coefficient(space, current, direction) - space.mobility * kT) == 0
+    paper = phase_space.reduced_noise_matrix
+    monkeypatch.setattr(phase_space, "reduced_noise_matrix", lambda s: paper(s) / sp.sqrt(kT))
+    without_kT = current_per_boltzmann(space, "ito")
+    assert sp.simplify(derivative_coefficient(space, without_kT, direction) - space.mobility) == 0
+    assert not zero_current_lemma.__wrapped__(2, "ito").holds  # uncached: proven again with the wrong noise
 
 
 @pytest.mark.parametrize("dim", [2, 3])

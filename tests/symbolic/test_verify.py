@@ -9,7 +9,15 @@ from derive import derive_noise, verify
 from derive.noise import Calculus, integral_amplitude
 from derive.symbols import kT, mu, u, w
 
-ALL_CHECKS = {"ode_residual", "zero_current_3d", "zero_current_2d", "noise_covariance", "boundary_condition", "nonnegative_finite"}
+ALL_CHECKS = {
+    "ode_residual",
+    "zero_current_3d",
+    "zero_current_2d",
+    "noise_covariance",
+    "boundary_condition",
+    "nonnegative_finite",
+    "kernel_accuracy",
+}
 
 
 def test_every_catalogue_law_verifies_for_its_calculi(reports):
@@ -17,6 +25,14 @@ def test_every_catalogue_law_verifies_for_its_calculi(reports):
     for key, report in reports.items():
         assert set(report.checks) == ALL_CHECKS, key
         assert report.verified, (key, report.checks, report.details)
+
+
+def test_reports_carry_the_lemmas_nu_kT_and_the_kernel_error(reports):
+    expected = {"ito": kT * mu, "stratonovich": kT * mu / 2, "hk": 0}
+    for (name, calculus), report in reports.items():
+        assert sp.sympify(report.details["nu_kT"], locals={"kT": kT, "mu": mu}) == expected[calculus], name
+        assert float(report.details["kernel_max_rel_error"]) < 1e-8, (name, calculus)
+        assert "kernel_max_rel_error" in report.as_dict()["details"]
 
 
 def test_coulomb_is_not_consistent_in_hk(laws):

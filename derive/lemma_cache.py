@@ -1,0 +1,157 @@
+"""On-disk cache of the law-independent facts of :mod:`derive.phase_space`.
+
+Proving the zero-current lemma and the covariance identities (F-50) on the pair phase space takes
+30-40 s and does not depend on the law, so every ``verify``/``generate`` process would otherwise
+prove them again. The facts (booleans, and the rational nu/mu that the lemma reads off the current)
+are stored as small JSON files in a user cache folder:
+
+- ``$FRICGEN_CACHE`` if set (``off`` disables the cache: every process proves again),
+- else ``$XDG_CACHE_HOME/fricgen``, else ``~/.cache/fricgen``.
+
+Entries are keyed on a hash of the sources the proof depends on (derive/phase_space.py,
+derive/symbols.py and this module), the generator version (derive.lawdata.GENERATOR_VERSION) and
+the SymPy version. An entry is written atomically (a temporary file renamed into place); an entry
+that cannot be read, holds another key or has the wrong shape is ignored and the fact is proven
+again (and rewritten). A folder that cannot be written is not an error: the fact is just not kept.
+No code is ever evaluated from the cache (the rational is parsed by ``fractions.Fraction``).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import tempfile
+from fractions import Fraction
+from functools import cache
+from pathlib import Path
+
+import sympy as sp
+
+from . import phase_space
+from .lawdata import GENERATOR_VERSION
+
+CACHE_ENV = "FRICGEN_CACHE"
+#: The sources whose bytes key the cache (besides the generator and SymPy versions).
+SOURCES = tuple(Path(__file__).with_name(name) for name in ("phase_space.py", "symbols.py", "lemma_cache.py"))
+
+
+def cache_folder() -> Path | None:
+    """The folder of the cache entries; None when the cache is switched off (FRICGEN_CACHE=off)."""
+    chosen = os.environ.get(CACHE_ENV)
+    if chosen:
+        return None if chosen.strip().lower() == "off" else Path(chosen).expanduser()
+    base = os.environ.get("XDG_CACHE_HOME")
+    if not base:
+        try:
+            base = Path.home() / ".cache"
+        except RuntimeError:  # no home folder to be found: no cache
+            return None
+    return Path(base) / "fricgen"
+
+
+@cache
+def cache_key() -> str:
+    """sha256 over the proof's sources (line ends normalized), GENERATOR_VERSION and SymPy's version.
+
+    Taken once per process (the facts proven in a process are those of the code it imported)."""
+    digest = hashlib.sha256()
+    for path in SOURCES:
+        try:
+            digest.update(path.read_bytes().replace(b"\r\n", b"\n"))
+        except OSError:
+            return ""  # no source to key on (an installation without .py files): no cache
+        digest.update(b"\0")
+    digest.update(f"generator={GENERATOR_VERSION}\0sympy={sp.__version__}".encode())
+    return digest.hexdigest()
+
+
+def _entry(name: str) -> Path | None:
+    folder, key = cache_folder(), cache_key()
+    return None if folder is None or not key else folder / f"{name}-{key[:16]}.json"
+
+
+def read_entry(name: str) -> dict | None:
+    """The cached facts of ``name``, or None (no cache, no entry, unreadable, or another key)."""
+    path = _entry(name)
+    if path is None:
+        return None
+    try:
+        data = json.loads(path.read_text())
+    except (OSError, ValueError):
+        return None
+    if not isinstance(data, dict) or data.get("key") != cache_key() or not isinstance(data.get("facts"), dict):
+        return None
+    return data["facts"]
+
+
+def write_entry(name: str, facts: dict) -> Path | None:
+    """Store ``facts`` (JSON-able) under ``name`` atomically; the path, or None if not written."""
+    path = _entry(name)
+    if path is None:
+        return None
+    text = json.dumps({"key": cache_key(), "name": name, "facts": facts}, indent=1, sort_keys=True)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{name}-", suffix=".tmp")
+        try:
+            with os.fdopen(handle, "w") as stream:
+                stream.write(text)
+            os.replace(temporary, path)
+        except BaseException:
+            Path(temporary).unlink(missing_ok=True)
+            raise
+    except OSError:
+        return None
+    return path
+
+
+def _rational(text) -> sp.Rational | None:
+    if text is None:
+        return None
+    if not isinstance(text, str):
+        raise ValueError(f"not a rational: {text!r}")
+    value = Fraction(text)
+    return sp.Rational(value.numerator, value.denominator)
+
+
+def _lemma_from(facts: dict) -> phase_space.Lemma:
+    holds = facts["holds"]
+    if not isinstance(holds, bool):
+        raise ValueError(f"holds must be a boolean, got {holds!r}")
+    return phase_space.Lemma(holds, _rational(facts["nu_over_mu"]))
+
+
+@cache
+def zero_current(dim: int, calculus: str) -> phase_space.Lemma:
+    """:func:`derive.phase_space.zero_current_lemma`, read from the cache or proven and stored."""
+    name = f"zero_current_{dim}d_{calculus}"
+    facts = read_entry(name)
+    if facts is not None:
+        try:
+            return _lemma_from(facts)
+        except (KeyError, TypeError, ValueError, ZeroDivisionError):
+            pass  # a damaged entry: prove again
+    lemma = phase_space.zero_current_lemma(dim, calculus)
+    ratio = None if lemma.nu_over_mu is None else str(lemma.nu_over_mu)
+    write_entry(name, {"holds": lemma.holds, "nu_over_mu": ratio})
+    return lemma
+
+
+@cache
+def covariance(dim: int) -> dict[str, bool]:
+    """:func:`derive.phase_space.covariance_identities`, read from the cache or proven and stored."""
+    name = f"covariance_{dim}d"
+    facts = read_entry(name)
+    if facts and all(isinstance(v, bool) for v in facts.values()):
+        return dict(facts)
+    facts = phase_space.covariance_identities(dim)
+    write_entry(name, dict(facts))
+    return facts
+
+
+def clear_memory() -> None:
+    """Forget the facts held in this process (the next call reads the disk again; for tests)."""
+    zero_current.cache_clear()
+    covariance.cache_clear()
+    cache_key.cache_clear()
