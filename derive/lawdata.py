@@ -10,16 +10,20 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 import os
+import re
 import tempfile
 import tomllib
+from dataclasses import dataclass
 from pathlib import Path
 
 from .calculus import CALCULI
 from .errors import DeriveError
 
 #: Version of the code generator; part of every source hash, bump when emitted code changes.
-GENERATOR_VERSION = 1
+#: 2: RANGES (the parameters' admissible ranges) in law modules; quadrature cut at branch points.
+GENERATOR_VERSION = 2
 
 CATALOGUE = Path(__file__).with_name("catalogue")
 #: The source of the potentials (derive.potentials), hashed as bytes by potential_source_hash.
@@ -31,12 +35,62 @@ MAX_LAW_FILE = 64 * 1024
 LAW_KEYS = {"name": str, "friction": str, "weight": str, "calculi": list, "description": str, "reference": str, "parameters": dict}
 REQUIRED_KEYS = ("name", "friction")
 #: The keys of a parameter's table; default is required.
-PARAMETER_KEYS = {"default": (int, float), "unit": str, "description": str}
+PARAMETER_KEYS = {"default": (int, float), "unit": str, "description": str, "range": str}
 _KINDS = {str: "a string", list: "a list of strings", dict: "a table", (int, float): "a number"}
+#: How to write a range, for error messages.
+RANGE_EXAMPLE = 'an interval such as "[0, 2]", "(0, inf)" or "[1, 3)" (brackets closed, parentheses open)'
 
 
 class LawFileError(DeriveError, ValueError):
     """A law file that cannot be read."""
+
+
+@dataclass(frozen=True)
+class Interval:
+    """The admissible values of a parameter: from ``lower`` to ``upper`` (``math.inf``: no bound), each
+    end closed (included) or open. Parameters are real numbers >= 0, so ``lower`` >= 0."""
+
+    lower: float = 0.0
+    upper: float = math.inf
+    lower_closed: bool = False
+    upper_closed: bool = False
+
+    def __contains__(self, value: float) -> bool:
+        above = value > self.lower or (self.lower_closed and value == self.lower)
+        return above and (value < self.upper or (self.upper_closed and value == self.upper))
+
+    def __str__(self) -> str:
+        def end(x: float) -> str:
+            x = float(x)
+            return "inf" if x == math.inf else str(int(x)) if x.is_integer() and abs(x) < 1e15 else repr(x)
+
+        return f"{'[' if self.lower_closed else '('}{end(self.lower)}, {end(self.upper)}{']' if self.upper_closed else ')'}"
+
+
+#: The default range of a parameter: the positive reals.
+POSITIVE = Interval()
+_NUMBER = r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?"
+_INTERVAL = re.compile(rf"\s*([\[(])\s*({_NUMBER})\s*,\s*({_NUMBER}|\+?inf)\s*([\])])\s*")
+
+
+def parse_range(text: str, what: str) -> Interval:
+    """The Interval of a range as a law file writes it (``"[0, 2]"``, ``"(0, inf)"``); LawFileError
+    starting with ``what`` for anything else, an empty range, or one reaching below 0."""
+    match = _INTERVAL.fullmatch(text) if isinstance(text, str) else None
+    if match is None:
+        shown = repr(text) if isinstance(text, str) and len(text) <= 40 else _describe(text)
+        raise LawFileError(f"{what}: cannot read {shown}: write {RANGE_EXAMPLE}")
+    opening, lower, upper, closing = match.groups()
+    interval = Interval(float(lower), float(upper.lstrip("+")), opening == "[", closing == "]")
+    if not math.isfinite(interval.lower):
+        raise LawFileError(f"{what}: the lower end of {text.strip()} must be a finite number")
+    if interval.lower < 0:
+        raise LawFileError(f"{what}: {text.strip()} reaches below 0: parameters are real numbers >= 0")
+    if interval.upper == math.inf and interval.upper_closed:
+        raise LawFileError(f"{what}: an infinite end is open: write {str(Interval(interval.lower, math.inf, interval.lower_closed))}")
+    if not interval.lower < interval.upper:
+        raise LawFileError(f"{what}: {text.strip()} is empty: the lower end must be below the upper end")
+    return interval
 
 
 def read_law_data(path: str | Path) -> dict:
@@ -69,8 +123,9 @@ def _describe(value: object) -> str:
 def check_law_data(data: dict, path: str | Path) -> None:
     """The schema of a law file: known keys, required keys, and the type of every value.
 
-    Raises LawFileError naming the first problem, on one line. The values themselves (an
-    expression, a parameter's name or default, the law's name) are checked by derive.laws.make_law.
+    Raises LawFileError naming the first problem, on one line. A parameter's ``range`` is read here
+    (:func:`parse_range`) and must hold its default; the other values (an expression, a parameter's
+    name or default, the law's name) are checked by derive.laws.make_law.
     """
     unknown = sorted(set(data) - set(LAW_KEYS))
     if unknown:
@@ -98,7 +153,12 @@ def check_law_data(data: dict, path: str | Path) -> None:
             raise LawFileError(f"{path}: parameters.{name} needs a default")
         for key, kind in PARAMETER_KEYS.items():
             if key in spec and (not isinstance(spec[key], kind) or isinstance(spec[key], bool)):
-                raise LawFileError(f"{path}: parameters.{name}.{key} must be {_KINDS[kind]}, got {_describe(spec[key])}")
+                example = f" ({RANGE_EXAMPLE})" if key == "range" else ""
+                raise LawFileError(f"{path}: parameters.{name}.{key} must be {_KINDS[kind]}{example}, got {_describe(spec[key])}")
+        if "range" in spec:
+            interval = parse_range(spec["range"], f"{path}: parameters.{name}.range")
+            if spec["default"] not in interval:
+                raise LawFileError(f"{path}: parameters.{name}: the default {spec['default']!r} is outside its range {interval}")
 
 
 def write_text_atomic(path: Path, text: str, overwrite: bool = True) -> None:

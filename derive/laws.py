@@ -13,11 +13,15 @@ A law file is plain TOML (see ``derive/catalogue/``)::
     default = 6.0
     unit = "sqrt(m kT)/sigma"
     description = "viscous friction coefficient"
+    range = "(0, inf)"        # the admissible values (the default): [ ] closed, ( ) open ends
 
 f is the magnitude of the tangential contact force (units of force) as a function of the
-tangential speed u >= 0, the centre distance r and the weight value w = w(r). Parameters are
-positive reals. Expressions are data, never run: see derive.expressions for their grammar (numbers,
-u, r, w, the parameters, pi, + - * / **, a list of functions, Piecewise) and size limits.
+tangential speed u >= 0, the centre distance r and the weight value w = w(r). Parameters are real
+numbers in their ranges (within [0, oo); the positive reals unless ``range`` says otherwise), and f
+must be >= 0, real and finite for every combination of them (derive.ranges: proven by SymPy where it
+can, else checked on a grid; ``FrictionLaw.range_check`` says which). Expressions are data, never
+run: see derive.expressions for their grammar (numbers, u, r, w, the parameters, pi, + - * / **, a
+list of functions, Piecewise) and size limits.
 ``calculi`` lists the calculi the law claims to support (default: all three); a calculus is left
 out only with a physical reason, e.g. constant friction has f(0+) > 0, so the
 Hänggi–Klimontovich amplitude f/u diverges at u = 0.
@@ -38,7 +42,8 @@ import sympy as sp
 from . import potentials
 from .calculus import CALCULI
 from .expressions import CONSTANTS, LawError, check_expression, check_parameter_name, expression_text, parse_expression, snippet, time_limit
-from .lawdata import CATALOGUE, LawFileError, check_law_data, read_law_data, source_hash, write_text_atomic
+from .lawdata import CATALOGUE, POSITIVE, Interval, LawFileError, check_law_data, parse_range, read_law_data, source_hash, write_text_atomic
+from .ranges import check_ranges
 from .symbols import r, u, w
 
 #: Wall-time limits (seconds) of a law's validation, and of the symbolic limit in its tail check.
@@ -48,15 +53,20 @@ TAIL_LIMIT_TIME = 20.0
 
 @dataclass(frozen=True)
 class Parameter:
-    """A named positive parameter with its default value and unit."""
+    """A named parameter with its default value, unit and range of admissible values (an Interval
+    within [0, oo); the positive reals by default)."""
 
     name: str
     default: float
     unit: str = "1"
     description: str = ""
+    range: Interval = POSITIVE
 
     @property
     def symbol(self) -> sp.Symbol:
+        """Positive, or nonnegative when the range holds 0."""
+        if self.range.lower == 0 and self.range.lower_closed:
+            return sp.Symbol(self.name, nonnegative=True)
         return sp.Symbol(self.name, positive=True)
 
 
@@ -74,6 +84,8 @@ class FrictionLaw:
         source: the friction expression as written.
         source_hash: for a law read by :func:`load_law`, the source hash (derive.lawdata.source_hash)
             of the very bytes it was built from; generated kernels carry it. Empty otherwise.
+        range_check: how f >= 0, real and finite was established for every parameter value in the
+            ranges: "proven" (symbolically) or "checked numerically" (derive.ranges).
     """
 
     name: str
@@ -86,6 +98,7 @@ class FrictionLaw:
     reference: str = ""
     source: str = field(default="", compare=False)
     source_hash: str = field(default="", compare=False)
+    range_check: str = field(default="", compare=False)
 
     @property
     def symbols(self) -> dict[str, sp.Symbol]:
@@ -112,7 +125,8 @@ def make_law(
         name: identifier (ASCII letters, digits, underscores; not starting with an underscore).
         friction: f as text (parsed as data by :func:`derive.expressions.parse_expression`, never
             evaluated) or as a SymPy expression in u, r, w and the parameters.
-        parameters: ``{name: {"default": x, "unit": ..., "description": ...}}`` or Parameters.
+        parameters: ``{name: {"default": x, "unit": ..., "description": ..., "range": "[0, 2]"}}``
+            (range as in a law file, or an Interval) or Parameters.
         weight: None, the name of a potential in :mod:`derive.potentials` (w = -dU/dr), or an
             expression in r.
         calculi: the calculi the law supports.
@@ -152,8 +166,8 @@ def make_law(
         source=source,
     )
     with time_limit(VALIDATION_TIME_LIMIT, LawError(f"law {name}: validation took longer than {VALIDATION_TIME_LIMIT:g} s; simplify f")):
-        validate(law)
-    return law
+        checked = validate(law)
+    return dataclasses.replace(law, range_check=checked)
 
 
 def _check_name(name: object) -> None:
@@ -165,15 +179,19 @@ def _check_name(name: object) -> None:
 
 
 def _check_parameter(law: str, p: Parameter) -> None:
-    """A parameter's name becomes a symbol and a variable of the kernels; its default a positive float."""
+    """A parameter's name becomes a symbol and a variable of the kernels; its default a float in its range."""
     name = p.name
     check_parameter_name(name, f"law {law}")
+    if not isinstance(p.range, Interval):
+        raise LawError(f"law {law}: parameter {name}: range must be an Interval or a string such as '[0, 2]', got {type(p.range).__name__}")
     try:
-        valid = not isinstance(p.default, bool) and isinstance(p.default, (int, float)) and math.isfinite(p.default) and p.default > 0
+        number = not isinstance(p.default, bool) and isinstance(p.default, (int, float))
+        valid = number and math.isfinite(p.default) and p.default in p.range
     except OverflowError:
         valid = False
     if not valid:
-        raise LawError(f"law {law}: parameter {name} needs a finite positive default, got {snippet(repr(p.default))}")
+        wanted = "a finite positive default" if p.range == POSITIVE else f"a finite default in its range {p.range}"
+        raise LawError(f"law {law}: parameter {name} needs {wanted}, got {snippet(repr(p.default))}")
     for key in ("unit", "description"):
         if not isinstance(getattr(p, key), str):
             raise LawError(f"law {law}: parameter {name}: {key} must be a string, got {type(getattr(p, key)).__name__}")
@@ -182,10 +200,16 @@ def _check_parameter(law: str, p: Parameter) -> None:
 def _parameter_fields(law: str, key: str, spec: dict) -> dict:
     if not isinstance(spec, dict) or "default" not in spec:
         raise LawError(f"law {law}: parameter {snippet(repr(key))} needs a table with a 'default'")
-    unknown = set(spec) - {"default", "unit", "description"}
+    unknown = set(spec) - {"default", "unit", "description", "range"}
     if unknown:
         raise LawError(f"law {law}: parameter {snippet(repr(key))} has unknown keys {sorted(unknown)}")
-    return {"default": spec["default"], "unit": spec.get("unit", "1"), "description": spec.get("description", "")}
+    interval = spec.get("range", POSITIVE)
+    if not isinstance(interval, Interval):
+        try:
+            interval = parse_range(interval, f"law {law}: parameter {snippet(str(key))}: range")
+        except LawFileError as error:
+            raise LawError(str(error)) from None
+    return {"default": spec["default"], "unit": spec.get("unit", "1"), "description": spec.get("description", ""), "range": interval}
 
 
 def _weight(name: str, weight: str | None, params: tuple[Parameter, ...]) -> tuple[sp.Expr | None, tuple[Parameter, ...]]:
@@ -213,18 +237,15 @@ def _weight(name: str, weight: str | None, params: tuple[Parameter, ...]) -> tup
 
 # --- validation -----------------------------------------------------------------------------
 
-#: Speeds at which sign and realness are sampled, in units where kT nu ~ 1 (plus u = 0).
-SAMPLE_SPEEDS = (0, *(10.0**e for e in range(-8, 9)), *(0.1 * k for k in range(1, 40)))
-SAMPLE_WEIGHTS = (1e-3, 0.5, 1.0, 60.0, 1e4)
-SAMPLE_DISTANCES = (0.5, 0.9, 1.0, 1.1, 2.0)
 
-
-def validate(law: FrictionLaw) -> None:
-    """Raise :class:`LawError` for a law without a consistent noise amplitude.
+def validate(law: FrictionLaw) -> str:
+    """Raise :class:`LawError` for a law without a consistent noise amplitude; else return how f >= 0
+    was established over the parameters' ranges ("proven" or "checked numerically", derive.ranges).
 
     Checks: only known symbols; depends on u, w or r (a constant law needs its weight); w used only with a weight; f real and finite and
-    f >= 0 for u >= 0 (symbolically where SymPy decides it, else on a sample grid); the tail
-    integral (F-22) converges for every kT nu > 0, i.e. ln f / u^2 -> 0 as u -> oo.
+    f >= 0 for u >= 0 and every parameter value in the ranges (symbolically where SymPy decides it,
+    else on grids); the tail integral (F-22) converges for every kT nu > 0, i.e. ln f / u^2 -> 0 as
+    u -> oo (at the defaults).
     """
     f = law.friction
     allowed = {u, r, w, *law.symbols.values()}
@@ -243,34 +264,9 @@ def validate(law: FrictionLaw) -> None:
         raise LawError(f"law {law.name}: f uses w but the law defines no weight (set weight = 'wca' or an expression in r)")
     if f.has(sp.I) or f.is_real is False:
         raise LawError(f"law {law.name}: f = {_short(f)} is not real")
-    _check_samples(law)
+    checked = check_ranges(law)
     _check_tail(law)
-
-
-def _check_samples(law: FrictionLaw) -> None:
-    """f real, finite and >= 0 on a grid of u, w, r at the default parameters."""
-    if law.friction.is_nonnegative and law.friction.is_finite:
-        return
-    with mpmath.workdps(30):
-        evaluate = sp.lambdify((u, w, r), law.friction.subs(law.defaults), modules="mpmath")
-        for ww in SAMPLE_WEIGHTS:
-            for rr in SAMPLE_DISTANCES:
-                for uu in SAMPLE_SPEEDS:
-                    try:
-                        value = evaluate(mpmath.mpf(uu), mpmath.mpf(ww), mpmath.mpf(rr))
-                    except (ZeroDivisionError, ValueError, OverflowError) as error:
-                        raise LawError(f"law {law.name}: f is not finite at u={uu}, w={ww}, r={rr} ({type(error).__name__})") from error
-                    value = mpmath.mpmathify(value)
-                    if isinstance(value, mpmath.mpc) and abs(value.imag) > 0:
-                        raise LawError(f"law {law.name}: f is not real at u={uu}, w={ww}, r={rr} (f = {value})")
-                    value = mpmath.re(value)
-                    if not mpmath.isfinite(value):
-                        raise LawError(f"law {law.name}: f is not finite at u={uu}, w={ww}, r={rr}")
-                    if value < 0:
-                        raise LawError(
-                            f"law {law.name}: f is negative at u={uu}, w={ww}, r={rr} "
-                            f"(f = {mpmath.nstr(value, 6)}); friction must oppose sliding, f >= 0"
-                        )
+    return checked
 
 
 def _check_tail(law: FrictionLaw) -> None:
@@ -368,6 +364,8 @@ def law_text(law: FrictionLaw) -> str:
         lines += ["", f"[parameters.{p.name}]", f"default = {float(p.default)!r}", f"unit = {quote(p.unit)}"]
         if p.description:
             lines.append(f"description = {quote(p.description)}")
+        if p.range != POSITIVE:
+            lines.append(f"range = {quote(str(p.range))}")
     return "\n".join(lines) + "\n"
 
 

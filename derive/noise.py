@@ -15,19 +15,24 @@ noise of variance 2 kT per unit time.
 Closed forms: f is split at its branch points (Min, Max, Piecewise) into pieces on intervals of
 u; on each piece a polynomial in u integrates exactly with the Gaussian moments
 I_n(x) = int_x^oo s^n exp(-s^2/2a) ds (I_0 with erfc, I_1 elementary, then a recurrence).
-Other pieces keep the exact integral (F-22), evaluated numerically downstream.
+Other laws keep the exact integral (F-22), evaluated by quadrature downstream, and so do laws whose
+branches SymPy cannot decide (a branch point it cannot solve for, order or place): then f stays one
+piece on [0, oo). ``NoiseModel.reason`` says why a model has no closed form. A Min, Max or
+Piecewise that does not depend on u (a weight in r, say) is no branch point in u: it stays a factor.
 
 The physics: docs/physics.md#the-noise-amplitude-d.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field
 
 import mpmath
 import sympy as sp
 
 from .calculus import Calculus
+from .expressions import snippet, time_limit
 from .laws import FrictionLaw, LawError
 from .symbols import kT, mu, r, s, u, w
 
@@ -58,6 +63,9 @@ class NoiseModel:
             contains an unevaluated ``Integral`` over ``s`` from u to oo.
         closed_form: False when ``amplitude`` is the integral representation (F-22).
         mobility: the contact mobility mu (a symbol or an expression of particle properties).
+        reason: for the integral form, why no closed form was found (a branch of f that is no
+            polynomial in u, or branches SymPy cannot decide); D then keeps the integral (F-22),
+            evaluated by quadrature. Empty for a closed form.
     """
 
     law: FrictionLaw
@@ -65,6 +73,7 @@ class NoiseModel:
     amplitude: sp.Expr
     closed_form: bool
     mobility: sp.Expr = mu
+    reason: str = field(default="", compare=False)
 
     @property
     def nu(self) -> sp.Expr:
@@ -93,13 +102,40 @@ def derive_noise(law: FrictionLaw, calculus: Calculus | str, mobility: sp.Expr |
     model = NoiseModel(law, calculus, sp.Integer(0), True, mobility)
     if calculus is Calculus.HK:
         pieces = branches(law.friction)
-        if pieces is None:
-            return NoiseModel(law, calculus, sp.simplify(law.friction / u), True, mobility)
-        return NoiseModel(law, calculus, _piecewise([(sp.simplify(p.expr / u), p) for p in pieces]), True, mobility)
-    closed = closed_form_amplitude(law.friction, model.variance_scale)
+        if len(pieces) == 1:
+            amplitude = sp.simplify(law.friction / u)
+        else:
+            amplitude = _piecewise([(sp.simplify(p.expr / u), p) for p in pieces])
+        _check_rest_limit(law, amplitude)
+        return NoiseModel(law, calculus, amplitude, True, mobility)
+    closed, reason = _closed_form(law.friction, model.variance_scale)
     if closed is not None:
         return NoiseModel(law, calculus, closed, True, mobility)
-    return NoiseModel(law, calculus, integral_amplitude(law.friction, model.variance_scale), False, mobility)
+    amplitude = integral_amplitude(law.friction, model.variance_scale)
+    return NoiseModel(law, calculus, amplitude, False, mobility, reason)
+
+
+#: Wall-time limit (seconds) of the limit u -> 0+ of the HK amplitude.
+REST_LIMIT_TIME = 60.0
+
+
+class _SlowLimit(Exception):
+    """sp.limit took longer than REST_LIMIT_TIME."""
+
+
+def _check_rest_limit(law: FrictionLaw, amplitude: sp.Expr) -> None:
+    """The HK amplitude D = f/u needs a limit u -> 0+ that SymPy can take (finite or not: an infinite
+    one is reported by the verifier); a LawError with the reason otherwise."""
+    first = branches(amplitude)[0].expr
+    try:
+        with time_limit(REST_LIMIT_TIME, _SlowLimit()):
+            sp.limit(first, u, 0, "+")
+    except (NotImplementedError, ValueError, TypeError, _SlowLimit) as error:
+        why = snippet(str(error) or type(error).__name__, 100)
+        raise LawError(
+            f"law {law.name} (hk): SymPy cannot take the limit of D = f/u = {snippet(str(first), 60)} as u -> 0+ ({why}); "
+            "write exponents as numbers, or leave hk out of the law's calculi"
+        ) from None
 
 
 def integral_amplitude(friction: sp.Expr, a: sp.Expr) -> sp.Expr:
@@ -126,37 +162,88 @@ class Branch:
         return (self.lower + self.upper) / 2
 
 
-def branches(expr: sp.Expr) -> list[Branch] | None:
+def branches(expr: sp.Expr) -> list[Branch]:
     """Split ``expr`` (Min/Max/Piecewise in u) into branches on ordered intervals of u >= 0.
 
-    Returns a single branch on [0, oo) for smooth expressions, and None when the branch points
-    cannot be solved for and ordered symbolically.
+    Returns a single branch on [0, oo) for smooth expressions, and also (holding all of ``expr``)
+    when the branch points cannot be solved for, ordered or placed symbolically (see :func:`split`).
     """
-    folded = sp.piecewise_fold(expr.rewrite(sp.Piecewise))
+    return split(expr)[0]
+
+
+def split(expr: sp.Expr) -> tuple[list[Branch], str]:
+    """:func:`branches`, and why ``expr`` was left in one piece although it has branches ("" if not).
+
+    Integrals (the representation F-22) and Min, Max, Piecewise that do not depend on u (a weight in
+    r) are kept whole: they are no branch points in u.
+    """
+    hidden: dict[sp.Dummy, sp.Expr] = {}
+    folded = sp.piecewise_fold(_hide(expr, hidden).rewrite(sp.Piecewise))
     if not isinstance(folded, sp.Piecewise):
-        return [Branch(expr, sp.Integer(0), sp.oo)]
+        return [Branch(expr, sp.Integer(0), sp.oo)], ""
+    found, why = _split(folded, lambda e: str(e.xreplace(hidden)))
+    if found is None:
+        return [Branch(expr, sp.Integer(0), sp.oo)], f"SymPy cannot decide the branches of {snippet(str(expr), 80)} in u ({why})"
+    return [Branch(b.expr.xreplace(hidden), b.lower.xreplace(hidden), b.upper.xreplace(hidden)) for b in found], ""
+
+
+_OPAQUE = (sp.Min, sp.Max, sp.Piecewise, sp.Abs, sp.Heaviside, sp.sign)
+
+
+def _hide(expr: sp.Basic, hidden: dict[sp.Dummy, sp.Expr]) -> sp.Basic:
+    """``expr`` with its integrals and its branched parts free of u replaced by dummies (kept in
+    ``hidden``), outermost first; a dummy is positive or real where the part is."""
+    if isinstance(expr, sp.Integral) or isinstance(expr, _OPAQUE) and u not in expr.free_symbols:
+        kind = {"positive": True} if expr.is_positive else {"real": True} if expr.is_real else {}
+        hidden[dummy := sp.Dummy("opaque", **kind)] = expr
+        return dummy
+    if not expr.args or not expr.has(sp.Integral, *_OPAQUE):
+        return expr
+    return expr.func(*[_hide(a, hidden) for a in expr.args])
+
+
+def _split(folded: sp.Piecewise, show: Callable[[sp.Expr], str]) -> tuple[list[Branch] | None, str]:
+    """The branches of a folded Piecewise in u, or None and the undecided question (expressions
+    written by ``show``)."""
     points: list[sp.Expr] = []
     for _, condition in folded.args:
         for relation in condition.atoms(sp.core.relational.Relational):
             if u not in relation.free_symbols:
-                return None
-            for root in sp.solve(sp.Eq(relation.lhs, relation.rhs), u):
+                return None, f"the condition {show(relation)} of a branch in u does not involve u"
+            try:
+                roots = sp.solve(sp.Eq(relation.lhs, relation.rhs), u)
+            except (NotImplementedError, ValueError, TypeError):
+                roots = None
+            if not isinstance(roots, list):
+                return None, f"cannot solve {show(relation)} for u"
+            for root in roots:
                 if root.is_positive and root not in points:
                     points.append(root)
                 elif not root.is_nonpositive and root not in points:
-                    return None
+                    return None, f"cannot tell whether the branch point {show(root)} is positive"
     ordered = _ordered(points)
     if ordered is None:
-        return None
+        return None, f"cannot order the branch points {', '.join(map(show, points))}"
     edges = [sp.Integer(0), *ordered, sp.oo]
     result = []
     for lower, upper in zip(edges, edges[1:]):
         probe = Branch(sp.Integer(0), lower, upper).probe
         chosen = _branch_at(folded, probe)
         if chosen is None:
-            return None
+            return None, f"cannot tell which branch holds at u = {show(probe)}"
         result.append(Branch(chosen, lower, upper))
-    return result
+    return result, ""
+
+
+def switches(expr: sp.Expr) -> list[sp.Expr]:
+    """lhs - rhs of each condition in u of the branches of ``expr`` (Min, Max, Piecewise, Abs, ...),
+    decided or not: ``expr`` is smooth in u between the sign changes of these functions."""
+    folded = sp.piecewise_fold(expr.rewrite(sp.Piecewise))
+    found: list[sp.Expr] = []
+    for condition in folded.atoms(sp.core.relational.Relational):
+        if u in condition.free_symbols and (g := condition.lhs - condition.rhs) not in found and -g not in found:
+            found.append(g)
+    return sorted(found, key=sp.default_sort_key)
 
 
 def _ordered(points: list[sp.Expr]) -> list[sp.Expr] | None:
@@ -216,20 +303,26 @@ def _tail(expr: sp.Expr, x: sp.Expr, a: sp.Expr) -> sp.Expr | None:
 
 def closed_form_amplitude(friction: sp.Expr, a: sp.Expr) -> sp.Expr | None:
     """(F-22) in closed form when every branch of f is a polynomial in u, else None."""
-    pieces = branches(friction)
-    if pieces is None:
-        return None
+    return _closed_form(friction, a)[0]
+
+
+def _closed_form(friction: sp.Expr, a: sp.Expr) -> tuple[sp.Expr | None, str]:
+    """:func:`closed_form_amplitude` and, for None, why."""
+    pieces, undecided = split(friction)
+    if undecided:
+        return None, undecided
     parts = []
     for j, piece in enumerate(pieces):
         head = _tail(piece.expr, u, a)
         if head is None:
-            return None
+            where = "" if len(pieces) == 1 else f" on {piece.lower} <= u < {piece.upper}"
+            return None, f"f = {snippet(str(piece.expr), 80)}{where} is not a polynomial in u"
         total = head - _tail(piece.expr, piece.upper, a)
         for later in pieces[j + 1 :]:
             total += _tail(later.expr, later.lower, a) - _tail(later.expr, later.upper, a)
         amplitude = sp.powsimp(sp.expand(sp.exp(u**2 / (2 * a)) / a * total))
         parts.append((sp.simplify(amplitude), piece))
-    return _piecewise(parts)
+    return _piecewise(parts), ""
 
 
 # --- numbers --------------------------------------------------------------------------------
@@ -239,7 +332,8 @@ def numeric_amplitude(model: NoiseModel, values: dict[sp.Symbol, float]) -> call
     """D as a function of u (mpmath), with every other symbol given in ``values``.
 
     The integral form is evaluated with adaptive quadrature (mpmath.quad), independently of any
-    generated code.
+    generated code, split at the branch points of f (located numerically: a kink inside an interval
+    costs mpmath.quad its accuracy).
     """
     amplitude = model.amplitude.subs(values)
     if model.closed_form:
@@ -247,12 +341,30 @@ def numeric_amplitude(model: NoiseModel, values: dict[sp.Symbol, float]) -> call
     a = model.variance_scale.subs(values)
     f = sp.lambdify(u, model.law.friction.subs(values), modules="mpmath")
     a = mpmath.mpf(str(sp.N(a, 30)))
+    kinks = sorted(x for g in switches(model.law.friction) for x in sign_changes(g.subs(values), 60 * mpmath.sqrt(a)))
 
     def integral(x):
         x = mpmath.mpf(x)
-        return mpmath.quad(lambda t: f(t) * mpmath.exp(-(t * t - x * x) / (2 * a)), [x, x + mpmath.sqrt(a), mpmath.inf]) / a
+        points = [x, *(k for k in kinks if k > x), max(x, kinks[-1] if kinks else 0) + mpmath.sqrt(a), mpmath.inf]
+        return mpmath.quad(lambda t: f(t) * mpmath.exp(-(t * t - x * x) / (2 * a)), points) / a
 
     return integral
+
+
+def sign_changes(g: sp.Expr, reach, samples: int = 2000) -> list:
+    """Where ``g`` (an expression in u alone) changes sign on 0 < u < ``reach``: scanned on a
+    geometric grid from 1e-12 reach, each change refined by bisection (mpmath)."""
+    evaluate = sp.lambdify(u, g, modules="mpmath")
+    grid = [mpmath.mpf(reach) * mpmath.mpf(10) ** (12 * (k / samples - 1)) for k in range(samples + 1)]
+    found = []
+    for lo, hi in zip(grid, grid[1:]):
+        left = evaluate(lo) > 0
+        if (evaluate(hi) > 0) != left:
+            for _ in range(200):
+                mid = (lo + hi) / 2
+                lo, hi = (mid, hi) if (evaluate(mid) > 0) == left else (lo, mid)
+            found.append(hi)
+    return found
 
 
 __all__ = [
@@ -266,6 +378,9 @@ __all__ = [
     "gaussian_tail_moment",
     "integral_amplitude",
     "numeric_amplitude",
+    "sign_changes",
+    "split",
+    "switches",
     "r",
     "w",
 ]

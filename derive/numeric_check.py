@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import mpmath
 import sympy as sp
 
-from .noise import NoiseModel, branches
+from .noise import NoiseModel, branches, sign_changes, switches
 from .symbols import kT, mu, r, u, w
 
 #: Largest relative error of the printed kernel that the check accepts.
@@ -97,12 +97,14 @@ def reference_amplitude(model: NoiseModel, a: sp.Expr, values: dict) -> callable
         return sp.lambdify(u, model.amplitude.subs(values), modules="mpmath")
     f = sp.lambdify(u, model.law.friction.subs(values), modules="mpmath")
     scale = mpmath.mpf(str(sp.N(a.subs(values), DIGITS + 5)))
+    # split at the kinks of f (Min, Max, Piecewise in u): a kink inside an interval costs mpmath.quad its accuracy
+    kinks = [k for g in switches(model.law.friction) for k in sign_changes(g.subs(values), 60 * mpmath.sqrt(scale))]
 
     def integral(x):
         with mpmath.workdps(QUAD_DIGITS):
             x = mpmath.mpf(x)
             h = scale / (x + mpmath.sqrt(scale))  # the integrand decays on this scale
-            points = [x, x + h, x + 8 * h, x + 64 * h, mpmath.inf]
+            points = sorted({x, x + h, x + 8 * h, x + 64 * h, *(k for k in kinks if k > x)}) + [mpmath.inf]
             return mpmath.quad(lambda t: f(t) * mpmath.exp(-(t - x) * (t + x) / (2 * scale)), points) / scale
 
     return integral
@@ -152,12 +154,18 @@ class Point:
         return f"u = {self.speed:.6g} ({self.case})"
 
 
+def _within(parameter, value: float) -> float:
+    """``value`` if the parameter's declared range admits it, else its default (which it always admits)."""
+    return value if value in parameter.range else parameter.default
+
+
 def reference_points(model: NoiseModel, a: sp.Expr) -> list[Point]:
     """Reference values of D (:func:`reference_amplitude`, DIGITS digits) for every case of
     KERNEL_CASES: at u = 0 where D or its limit is finite, then at :func:`_speeds`."""
     found = []
     for temperature, mobility, weight, distance, factor in KERNEL_CASES:
-        values = {**{p: factor * v for p, v in model.law.defaults.items()}, kT: temperature, mu: mobility, w: weight, r: distance}
+        scaled = {p.symbol: _within(p, factor * p.default) for p in model.law.parameters}
+        values = {**scaled, kT: temperature, mu: mobility, w: weight, r: distance}
         arguments = (weight, distance, mobility, temperature, [float(values[p.symbol]) for p in model.law.parameters])
         case = f"kT={temperature}, mu={mobility}, w={weight}, r={distance}, parameters x{factor}"
         with mpmath.workdps(DIGITS):

@@ -69,7 +69,7 @@ def stabilize(expr: sp.Expr) -> sp.Expr:
     Then powers with equal exponents are recombined, sqrt(kT) sqrt(mu) -> sqrt(kT mu): one square
     root instead of two. SymPy splits such powers of positive symbols automatically, so the result
     holds assumption-free symbols of the same names (it is meant for printing only; valid since
-    all symbols of a law are positive).
+    all symbols of a law are positive, or nonnegative for a parameter whose range holds 0).
     """
     expr = expr.replace(lambda e: e.is_Mul, _scaled_erfc)
     expr = expr.replace(lambda e: e.is_Add, _expm1_pairs)
@@ -108,7 +108,7 @@ def cut(text: str) -> str:
 
 
 def compact(expr: sp.Expr) -> sp.Expr:
-    """``expr`` for reading: sqrt(kT)*sqrt(mu) -> sqrt(kT*mu) (exact, all symbols being positive)."""
+    """``expr`` for reading: sqrt(kT)*sqrt(mu) -> sqrt(kT*mu) (exact, all symbols being positive or nonnegative)."""
     plain = {x: sp.Symbol(x.name) for x in expr.free_symbols}
     return sp.powsimp(expr.xreplace(plain), combine="base", force=True, deep=True)
 

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import importlib
 import sys
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from types import ModuleType
@@ -31,7 +32,7 @@ import numba
 import numpy as np
 from numba import types
 
-from derive.lawdata import CATALOGUE, LawFileError, potential_source_hash, read_law_data, source_hash, weight_potential
+from derive.lawdata import CATALOGUE, POSITIVE, Interval, LawFileError, potential_source_hash, read_law_data, source_hash, weight_potential
 
 from .errors import ConfigError, KernelError
 
@@ -85,15 +86,32 @@ class LawKernels:
     def has_weight(self) -> bool:
         return self.module.HAS_WEIGHT
 
+    @property
+    def ranges(self) -> dict[str, Interval]:
+        """The admissible values of each parameter (from the law file; the positive reals by default)."""
+        ranges = getattr(self.module, "RANGES", None) or [()] * len(self.parameter_names)  # () : Interval() = POSITIVE
+        return {name: Interval(*bounds) for name, bounds in zip(self.parameter_names, ranges)}
+
     def parameters(self, **overrides: float) -> np.ndarray:
-        """Parameter values (float64 array) from the defaults and named overrides."""
+        """Parameter values (float64 array) from the defaults and named overrides, each checked against
+        its range (ConfigError naming the parameter and the range otherwise)."""
         values = dict(zip(self.parameter_names, self.module.DEFAULTS))
+        ranges = self.ranges
         for key, value in overrides.items():
             if key not in values:
                 names = list(self.parameter_names)
                 raise ConfigError(f"law.parameters.{key}", f"law {self.name} has no parameter {key!r}", f"it has {names}")
-            if not (np.isfinite(value) and value > 0):
+            allowed = ranges[key]
+            if allowed == POSITIVE and not (np.isfinite(value) and value > 0):
                 raise ConfigError(f"law.parameters.{key}", f"must be positive and finite, got {value}", "give a positive value")
+            if not np.isfinite(value):
+                raise ConfigError(f"law.parameters.{key}", f"must be finite and in {allowed}, got {value}", f"give a value in {allowed}")
+            if value not in allowed:
+                raise ConfigError(
+                    f"law.parameters.{key}",
+                    f"must be in {allowed}, got {value}",
+                    f"give a value in {allowed} (the range law {self.name} declares for {key})",
+                )
             values[key] = float(value)
         return np.array([values[n] for n in self.parameter_names], dtype=np.float64)
 
@@ -129,6 +147,19 @@ class LawKernels:
         return self.module.weight
 
 
+def _import(module_name: str, missing: Callable[[], KernelError], what: str, reload: bool = False) -> ModuleType:
+    """Import (or reload) a generated module. Its absence raises ``missing()``; a dependency that cannot
+    be imported (numba not installed, a broken generated/special.py) a KernelError that says so."""
+    try:
+        return importlib.reload(sys.modules[module_name]) if reload else importlib.import_module(module_name)
+    except ModuleNotFoundError as error:
+        if error.name is None or module_name == error.name or module_name.startswith(error.name + "."):
+            raise missing() from error
+        raise KernelError(f"{error.name} is not installed: {what} need it ({error}); install it, e.g. pip install {error.name}") from error
+    except ImportError as error:
+        raise KernelError(f"cannot import {what} ({module_name}): {error}") from error
+
+
 def load_law_kernels(name: str, catalogue: Path = CATALOGUE) -> LawKernels:
     """Kernels of the catalogue law ``name``; raises KernelError if missing or stale."""
     path = Path(catalogue) / f"{name}.toml"
@@ -141,12 +172,13 @@ def load_law_kernels(name: str, catalogue: Path = CATALOGUE) -> LawKernels:
     except LawFileError as error:
         raise KernelError(str(error)) from error
     module_name = f"generated.laws.{name}"
-    try:
-        module = importlib.import_module(module_name)
-    except ModuleNotFoundError as error:
-        raise KernelError(f"no generated kernels for law {name}: run `fricgen generate {name}`") from error
+
+    def missing():
+        return KernelError(f"no generated kernels for law {name}: run `fricgen generate {name}`")
+
+    module = _import(module_name, missing, f"the kernels of law {name}")
     if module.SOURCE_HASH != digest:
-        module = importlib.reload(sys.modules[module_name])  # regenerated since it was imported?
+        module = _import(module_name, missing, f"the kernels of law {name}", reload=True)  # regenerated since it was imported?
     if module.SOURCE_HASH != digest:
         changed = str(path) if weight_potential(data) is None else f"{path} or derive/potentials.py (its weight {data['weight']})"
         raise KernelError(
@@ -159,16 +191,17 @@ def load_potential(name: str) -> ModuleType:
     """Generated potential module (energy(x, params), force(x, params), PARAMETERS, DEFAULTS; external
     potentials also force_field(xs, params, out)); raises KernelError if missing or stale."""
     module_name = f"generated.potentials.{name}"
-    try:
-        module = importlib.import_module(module_name)
-    except ModuleNotFoundError as error:
+
+    def missing():
         import generated.potentials
 
         there = sorted(p.stem for p in Path(generated.potentials.__file__).parent.glob("*.py") if p.stem != "__init__")
-        raise KernelError(f"no generated potential {name!r} (there are {there}): a new one needs `fricgen generate`") from error
+        return KernelError(f"no generated potential {name!r} (there are {there}): a new one needs `fricgen generate`")
+
+    module = _import(module_name, missing, f"the kernels of potential {name}")
     digest = potential_source_hash(name)
     if getattr(module, "SOURCE_HASH", None) != digest:
-        module = importlib.reload(sys.modules[module_name])  # regenerated since it was imported?
+        module = _import(module_name, missing, f"the kernels of potential {name}", reload=True)  # regenerated since it was imported?
     if getattr(module, "SOURCE_HASH", None) != digest:
         raise KernelError(
             f"the kernels of potential {name} are stale: derive/potentials.py changed after they were generated; run `fricgen generate`"
