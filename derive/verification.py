@@ -88,10 +88,10 @@ def verify(model: NoiseModel) -> Report:
         details["ode_residual"] = "the zero-current lemma gives no nu kT for this calculus"
     else:
         details["nu_kT"] = str(a)
-        nonzero = [x for x in map(_reduced, ode_residuals(model, a)) if x != 0]
-        checks["ode_residual"] = not nonzero
-        if nonzero:
-            details["ode_residual"] = "nonzero: " + "; ".join(map(str, nonzero))
+        residuals = [_reduced(x) for x in ode_residuals(model, a)]
+        checks["ode_residual"] = all(x == 0 for x in residuals)
+        if not checks["ode_residual"]:
+            details["ode_residual"] = _describe_residuals(model, residuals)
     for dim in (3, 2):
         lemma = lemma_cache.zero_current(dim, model.calculus.value)
         same = scales[dim] is not None and a is not None and sp.simplify(scales[dim] - a) == 0
@@ -182,6 +182,20 @@ def ode_residuals(model: NoiseModel, a: sp.Expr | None = None) -> list[sp.Expr]:
     for (_, point, left, _), (_, _, right, _) in zip(intervals, intervals[1:]):
         residuals.append(left.subs(u, point) - right.subs(u, point))
     return residuals
+
+
+def _describe_residuals(model: NoiseModel, residuals: list[sp.Expr]) -> str:
+    """What is wrong, in words: residuals on intervals of u, and jumps of D at branch points (listed
+    after the intervals' residuals, as ode_residuals orders them)."""
+    intervals = _intervals(model)
+    parts = [f"nonzero on {lo} <= u < {hi}: {x}" for (lo, hi, _, _), x in zip(intervals, residuals) if x != 0]
+    jumps = residuals[len(intervals) :]
+    for (_, point, _, _), x in zip(intervals, jumps):
+        if x != 0:
+            parts.append(f"D jumps by {-x} at u = {point} (f is discontinuous there)")
+    if model.calculus is Calculus.HK and any(x != 0 for x in jumps):
+        parts.append("with HK, D = f/u inherits every jump of f: leave hk out of the law's calculi")
+    return "; ".join(parts)
 
 
 def _decays(model: NoiseModel, a: sp.Expr) -> bool:
