@@ -17,12 +17,10 @@ The engines import only the kernel layer, the RNG, schema/errors and derive's pl
 
 import os
 
-#: Threads that wait for the next parallel region sleep instead of spinning (OpenMP's passive wait
-#: policy): with another busy process on the machine, spinning threads starve the working ones and
-#: two threads ran 4-12 times slower than one (benchmarks/contention.py). The default thread count
-#: is the number of CPUs this process may use (its affinity), not the machine's. Both are defaults
-#: only: a user's own setting wins, and they act only when fricgen is imported before numba starts.
-os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+#: The default thread count is the number of CPUs this process may use (its affinity), not the
+#: machine's; a user's own NUMBA_NUM_THREADS wins, and it acts only when fricgen is imported before
+#: numba. (OpenMP's wait policy is left alone: passive waiting rescues two threads under contention
+#: but costs 5-8 times on a quiet machine with small systems; benchmarks/contention.py.)
 if hasattr(os, "sched_getaffinity"):
     os.environ.setdefault("NUMBA_NUM_THREADS", str(len(os.sched_getaffinity(0))))
 
