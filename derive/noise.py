@@ -328,29 +328,6 @@ def _closed_form(friction: sp.Expr, a: sp.Expr) -> tuple[sp.Expr | None, str]:
 # --- numbers --------------------------------------------------------------------------------
 
 
-def numeric_amplitude(model: NoiseModel, values: dict[sp.Symbol, float]) -> callable:
-    """D as a function of u (mpmath), with every other symbol given in ``values``.
-
-    The integral form is evaluated with adaptive quadrature (mpmath.quad), independently of any
-    generated code, split at the branch points of f (located numerically: a kink inside an interval
-    costs mpmath.quad its accuracy).
-    """
-    amplitude = model.amplitude.subs(values)
-    if model.closed_form:
-        return sp.lambdify(u, amplitude, modules="mpmath")
-    a = model.variance_scale.subs(values)
-    f = sp.lambdify(u, model.law.friction.subs(values), modules="mpmath")
-    a = mpmath.mpf(str(sp.N(a, 30)))
-    kinks = sorted(x for g in switches(model.law.friction) for x in sign_changes(g.subs(values), 60 * mpmath.sqrt(a)))
-
-    def integral(x):
-        x = mpmath.mpf(x)
-        points = [x, *(k for k in kinks if k > x), max(x, kinks[-1] if kinks else 0) + mpmath.sqrt(a), mpmath.inf]
-        return mpmath.quad(lambda t: f(t) * mpmath.exp(-(t * t - x * x) / (2 * a)), points) / a
-
-    return integral
-
-
 def sign_changes(g: sp.Expr, reach, samples: int = 2000) -> list:
     """Where ``g`` (an expression in u alone) changes sign on 0 < u < ``reach``: scanned on a
     geometric grid from 1e-12 reach, each change refined by bisection (mpmath)."""
@@ -377,7 +354,6 @@ __all__ = [
     "derive_noise",
     "gaussian_tail_moment",
     "integral_amplitude",
-    "numeric_amplitude",
     "sign_changes",
     "split",
     "switches",

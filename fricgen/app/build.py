@@ -6,8 +6,6 @@ Each failure is a :class:`~fricgen.errors.ConfigError` naming the key, raised be
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from ..errors import ConfigError, KernelError
@@ -16,6 +14,7 @@ from ..langevin.simulation import Simulation
 from ..langevin.system import (
     Particles,
     add_slab_walls,
+    ball_volume,
     interaction_reach,
     lattice_positions,
     packing_box,
@@ -56,7 +55,7 @@ def build(c: RunConfig) -> Simulation:
     if c.walls is not None:
         region[1] = 2 * (c.walls.half_width - 2 * s.radius)
     volume = np.prod(region[:dim])
-    per_particle = math.pi * s.radius**2 if dim == 2 else 4 / 3 * math.pi * s.radius**3
+    per_particle = ball_volume(s.radius, dim)
     n = s.n if s.n is not None else max(2, round(s.packing_fraction * volume / per_particle))
     if s.packing_fraction is None:
         check_fraction("system.n", n * per_particle / volume, s)

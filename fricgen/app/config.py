@@ -16,7 +16,7 @@ from pathlib import Path
 
 from ..errors import ConfigError
 from ..langevin.config import Active, Bulk, LangevinConfig, Law, Thermostat
-from ..langevin.system import CLOSE_PACKING, RANDOM_LIMIT, memory_estimate
+from ..langevin.system import CLOSE_PACKING, RANDOM_LIMIT, ball_volume, cubic_side, memory_estimate
 from ..schema import Section, structure
 
 EXAMPLES = Path(__file__).with_name("examples")
@@ -174,11 +174,10 @@ class RunConfig(Section):
         """The particles (mobile, estimated from the packing fraction if need be, and walls) and the cell
         list fit this machine's memory: checked before anything is allocated."""
         s, dim = self.system, self.system.dimension
-        per_particle = math.pi * s.radius**2 if dim == 2 else 4 / 3 * math.pi * s.radius**3
         if s.box is None:
-            n, box = s.n, ((s.n * per_particle / s.packing_fraction) ** (1 / dim),) * dim
+            n, box = s.n, (cubic_side(s.n, s.radius, dim, s.packing_fraction),) * dim
         else:
-            n, box = s.n or round(s.packing_fraction * math.prod(s.box) / per_particle), s.box
+            n, box = s.n or round(s.packing_fraction * math.prod(s.box) / ball_volume(s.radius, dim)), s.box
         walls = 0 if self.walls is None else 2 * math.prod(max(1, round(box[a] / self.walls.spacing)) for a in range(0, dim, 2))
         needed = memory_estimate(n + walls, box, s.radius, self.langevin().skin)  # also checks the engine's scalars
         what = f"{n} particles" + (f" and {walls} wall spheres" if walls else "") + (f" in a box of {list(box)}" if s.box else "")

@@ -94,6 +94,17 @@ BYTES_PER_PARTICLE, BYTES_PER_NEIGHBOUR = 1024, 8 * (2 + PAIR_FIELDS)
 entry of its full Verlet list (the neighbour, its reverse slot and its pair slot): upper estimates."""
 
 
+def ball_volume(radius: float, dim: int) -> float:
+    """Area (2-D) or volume (3-D) of one sphere: pi R^2 or 4/3 pi R^3."""
+    return math.pi * radius**2 if dim == 2 else 4 / 3 * math.pi * radius**3
+
+
+def cubic_side(n: int, radius: float, dim: int, fraction: float) -> float:
+    """Side of the square (cubic) box in which n spheres of ``radius`` fill the packing ``fraction``
+    (no arrays: for estimates made before anything is allocated)."""
+    return (n * ball_volume(radius, dim) / fraction) ** (1 / dim)
+
+
 def lattice_limit(n: int, dim: int) -> float:
     """Densest packing fraction of a lattice start of n equal spheres in a cubic box: LATTICE_LIMIT
     when n is a square (cube), less otherwise (:func:`lattice_positions` puts ceil(n^(1/dim)) sites
@@ -111,8 +122,7 @@ def memory_estimate(n: int, box: tuple[float, ...], radius: float, skin: float) 
     """Bytes that a run of n spheres in a periodic box of lengths ``box`` (2 or 3) needs, estimated
     from above before anything is allocated: per particle, per neighbour and per cell of the cell list."""
     reach = interaction_reach(radius, skin)
-    ball = math.pi * reach**2 if len(box) == 2 else 4 / 3 * math.pi * reach**3
-    neighbours = min(n, n * ball / math.prod(box) + 1)
+    neighbours = min(n, n * ball_volume(reach, len(box)) / math.prod(box) + 1)
     cells = math.prod(max(1.0, length / reach) for length in box)
     return n * (BYTES_PER_PARTICLE + BYTES_PER_NEIGHBOUR * neighbours) + 16 * cells
 

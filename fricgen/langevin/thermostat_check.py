@@ -19,7 +19,7 @@ from ..schema import Section
 from .analysis import Sampler, block_estimate, kl_divergence
 from .config import LangevinConfig, Law, Thermostat
 from .simulation import Simulation
-from .system import CLOSE_PACKING, Particles, interaction_reach, lattice_limit, lattice_state, memory_estimate
+from .system import CLOSE_PACKING, Particles, cubic_side, interaction_reach, lattice_limit, lattice_state, memory_estimate
 
 #: Spheres and packing fraction of the check when not given, per dimension (the paper's passive check).
 DEFAULT_N, DEFAULT_PHI = {2: 256, 3: 216}, {2: 0.6, 3: 0.3}
@@ -64,7 +64,7 @@ class PassiveCheck(Section):
             f"{phi:g} is too dense for the lattice start of {n} spheres (at most {lattice:.4f} in {dim}-D)",
             "give a smaller value",
         )
-        side = (n * (math.pi / 4 if dim == 2 else math.pi / 6) * (2 * RADIUS) ** dim / phi) ** (1 / dim)
+        side = cubic_side(n, RADIUS, dim, phi)
         config = self.langevin()  # checks the seed
         self.require_memory("n", memory_estimate(n, (side,) * dim, RADIUS, config.skin), f"{n} spheres")
         smallest = 2 * interaction_reach(RADIUS, config.skin)

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from derive.noise import numeric_amplitude
+from derive.numeric_check import reference_amplitude
 from derive.symbols import kT, mu, r, w
 
 
@@ -19,7 +19,7 @@ def integral_models(models):
 def test_quadrature_relative_error_below_1e_8_over_the_whole_u_range(models, kernels, temperature, mobility, weight):
     for (name, calculus), model in integral_models(models).items():
         kernel, params = kernels[name].noise_amplitude(calculus), kernels[name].parameters()
-        exact = numeric_amplitude(model, {**model.law.defaults, kT: temperature, mu: mobility, w: weight, r: 1.0})
+        exact = reference_amplitude(model, model.variance_scale, {**model.law.defaults, kT: temperature, mu: mobility, w: weight, r: 1.0})
         scale = math.sqrt(temperature * mobility)
         for x in np.concatenate([[0.0], scale * np.geomspace(1e-8, 1e3, 40)]):
             got = kernel(x, weight, 1.0, mobility, temperature, params)
