@@ -1,7 +1,7 @@
 """The text of Numba kernels, piece by piece: decorators and signatures (the kernel ABI), headers and
 docstrings, branches as ``if`` statements, the guards at u = 0, and the quadrature of (F-22).
 
-:mod:`derive.emit` assembles modules from these pieces (and prints each expression through its
+:mod:`derive.modules` assembles modules from these pieces (and prints each expression through its
 ``_kernel``, which applies the stable rewrites of :mod:`derive.printer`). Nothing here imports Numba:
 the kernels are text.
 """

@@ -1,7 +1,7 @@
 """The numbers the engines use, checked: the printed noise-amplitude kernel against mpmath.
 
 derive never imports Numba or the runtime, so the kernel is checked as *code*: the module text
-that :func:`derive.emit.law_module` prints for the model is executed as plain Python, with
+that :func:`derive.modules.law_module` prints for the model is executed as plain Python, with
 ``numba.njit`` replaced by an identity decorator and ``erfcx`` taken from the hand-written source
 that the generator copies (derive/kernel_sources/special.py, executed the same way). Its
 ``noise_amplitude_<calculus>`` is compared with an independent evaluation of D:
@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import mpmath
 import sympy as sp
 
+from . import modules
 from .noise import NoiseModel, branches, sign_changes, switches
 from .symbols import kT, mu, r, u, w
 
@@ -67,22 +68,22 @@ def execute(source: str, modules: dict[str, object]) -> dict:
         return modules[key]
 
     namespace = {"__builtins__": {**vars(builtins), "__import__": importer}, "__name__": "derive_kernel_check"}
-    exec(compile(source, "<printed kernels>", "exec"), namespace)  # noqa: S102 - code printed by derive.emit
+    exec(compile(source, "<printed kernels>", "exec"), namespace)  # noqa: S102 - code printed by derive.modules
     return namespace
 
 
 def python_kernels(model: NoiseModel) -> dict:
-    """The namespace of the law module that derive.emit prints for ``model``, run as plain Python."""
-    from .emit import SPECIAL_SOURCE, law_module  # derive.emit imports this module's caller
+    """The namespace of the law module that derive.modules prints for ``model`` (as generate writes
+    it), run as plain Python."""
 
     fake = _Numba()
     special = types.ModuleType("special")
-    special.__dict__.update(execute(SPECIAL_SOURCE.read_text(), {"math": math, "numba": fake}))
-    modules = {"math": math, "numba": fake, "..special": special}
-    source = law_module(model.law, {model.calculus.value: model}, "", "derive.verification")
+    special.__dict__.update(execute(modules.SPECIAL_SOURCE.read_text(), {"math": math, "numba": fake}))
+    imports = {"math": math, "numba": fake, "..special": special}
+    source = modules.law_module(model.law, {model.calculus.value: model}, "", "derive.verification")
     if "numpy" in source:  # generated code may use numpy (tests/test_layers.py); loaded only when it does
-        modules["numpy"] = importlib.import_module("numpy")
-    return execute(source, modules)
+        imports["numpy"] = importlib.import_module("numpy")
+    return execute(source, imports)
 
 
 def reference_amplitude(model: NoiseModel, a: sp.Expr, values: dict) -> callable:

@@ -22,7 +22,7 @@ Checks of :func:`verify` (names as in the report and in ``fricgen verify --json`
   (or D = f/u) with f >= 0, or by SymPy's assumptions; the limit u -> 0+ is finite (and >= 0 for
   kT = 1, mu = 7, equal spheres R = 1/2, m = 1); and confirmed numerically at the reference points
   of the kernel check (several kT, mu, w, r and parameter values, u up to 1e3 sqrt(nu kT)).
-- ``kernel_accuracy``: the noise-amplitude kernel as derive.emit prints it, run as plain Python,
+- ``kernel_accuracy``: the noise-amplitude kernel as derive.modules prints it (and generate writes it), run as plain Python,
   agrees with an independent mpmath evaluation of D (the closed form at 30 digits, or (F-22) by
   mpmath.quad with the lemma's nu kT) to a relative error below KERNEL_TOLERANCE = 1e-8, for
   u = 0 ... 1e3 sqrt(nu kT) and several kT, mu, w, r, parameters (:mod:`derive.numeric_check`);

@@ -14,7 +14,7 @@ from fractions import Fraction
 import pytest
 import sympy as sp
 
-from derive import contact_mobility, derive_noise, emit, verify
+from derive import contact_mobility, derive_noise, emit, modules, verify
 from derive.calculus import Calculus
 from derive.noise import NoiseModel
 from derive.phase_space import pair_phase_space
@@ -128,15 +128,15 @@ def test_lemma_scale_follows_the_models_mobility(laws):
 
 def test_a_printer_error_is_caught_by_kernel_accuracy_alone(laws, monkeypatch):
     """The symbolic D is right, the printed code 1e-6 off: only the kernel check can see it."""
-    stabilize = emit.stabilize
-    monkeypatch.setattr(emit, "stabilize", lambda expr: stabilize(expr) * sp.Rational(1000001, 1000000))
+    stabilize = modules.stabilize
+    monkeypatch.setattr(modules, "stabilize", lambda expr: stabilize(expr) * sp.Rational(1000001, 1000000))
     report = verify(derive_noise(laws["coulomb_newton"], "ito"))
     assert failed(report) == {"kernel_accuracy"}, report.checks
     assert float(report.details["kernel_max_rel_error"]) == pytest.approx(1e-6, rel=1e-3)
 
 
 def test_a_coarse_quadrature_is_caught_by_kernel_accuracy(laws, monkeypatch):
-    monkeypatch.setattr(emit, "QUADRATURE_ORDER", 3)
+    monkeypatch.setattr(modules, "QUADRATURE_ORDER", 3)
     report = verify(derive_noise(laws["smooth_coulomb"], "stratonovich"))
     assert failed(report) == {"kernel_accuracy"}, report.checks
     assert float(report.details["kernel_max_rel_error"]) > 1e-8
@@ -144,10 +144,10 @@ def test_a_coarse_quadrature_is_caught_by_kernel_accuracy(laws, monkeypatch):
 
 def test_a_wrong_erfcx_is_caught_by_kernel_accuracy(laws, monkeypatch, tmp_path):
     """The continued fraction of generated/special.py's erfcx cut to 2 terms: wrong for large u."""
-    source = emit.SPECIAL_SOURCE.read_text()
+    source = modules.SPECIAL_SOURCE.read_text()
     assert "terms = 20 if x < 10.0 else 10" in source
     broken = tmp_path / "special.py"
     broken.write_text(source.replace("terms = 20 if x < 10.0 else 10", "terms = 2"))
-    monkeypatch.setattr(emit, "SPECIAL_SOURCE", broken)
+    monkeypatch.setattr(modules, "SPECIAL_SOURCE", broken)
     report = verify(derive_noise(laws["coulomb"], "ito"))
     assert failed(report) == {"kernel_accuracy"}, report.checks

@@ -1,0 +1,200 @@
+"""The text of every generated module: a law's kernels, a potential's, the special functions.
+
+Printing only, nothing written: :mod:`derive.emit` writes these texts into ``generated/``, and
+:mod:`derive.numeric_check` runs the text of a law module as plain Python to check its numbers
+against mpmath, so both take the same code from here.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from pathlib import Path
+
+import sympy as sp
+from sympy.integrals.quadrature import gauss_legendre
+
+from . import potentials
+from .kernel_code import (
+    CONTACT_SIGNATURE,
+    FIELD_KERNEL,
+    INDENT,
+    body,
+    header,
+    quote_doc,
+    ranges_literal,
+    tail_kernels,
+    zero_speed_guard,
+    zero_speed_limit,
+    zero_speed_note,
+)
+from .kernel_code import decorator as _decorator
+from .lawdata import potential_source_hash
+from .laws import FrictionLaw
+from .noise import NoiseModel, switches
+from .potentials import EXTERNAL_POTENTIALS, PAIR_POTENTIALS, Potential
+from .printer import FORMULA_LIMIT, KernelPrinter, compact, cut, equation, fold_constants, short_formula, stabilize
+from .symbols import kT, s, u
+
+SPECIAL_SOURCE = Path(__file__).with_name("kernel_sources") / "special.py"
+
+#: Gauss–Legendre order of the integral-form kernels (see derive.kernel_code.TAIL_KERNEL).
+QUADRATURE_ORDER = 10
+
+
+# --- functions ---------------------------------------------------------------------------------
+
+
+def _kernel(name: str, args: str, expr: sp.Expr, doc: str, parameters: list[sp.Symbol], guard: list[str] = ()) -> str:
+    """One Numba function: unpack the parameters it uses, then the printed expression."""
+    printer = KernelPrinter()
+    expr = fold_constants(stabilize(expr))
+    used = {x.name for x in expr.free_symbols}
+    unpack = [f"{INDENT}{printer.doprint(p)} = params[{k}]" for k, p in enumerate(parameters) if p.name in used]
+    docstring = INDENT + quote_doc(doc.replace("\n", "\n" + INDENT))
+    lines = [_decorator(args), f"def {name}({args}):", docstring, *unpack, *guard, *body(expr, printer)]
+    return "\n".join(lines) + "\n"
+
+
+# --- law modules -------------------------------------------------------------------------------
+
+
+def _quadrature_constants() -> str:
+    nodes, weights = gauss_legendre(QUADRATURE_ORDER, 25)
+    as_tuple = ", ".join
+    return f"_GL_NODES = ({as_tuple(repr(float(x)) for x in nodes)},)\n_GL_WEIGHTS = ({as_tuple(repr(float(x)) for x in weights)},)\n"
+
+
+def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, source: str) -> str:
+    """The text of ``generated/laws/<law>.py`` for verified models of ``law``."""
+    params = [p.symbol for p in law.parameters]
+    forms = ", ".join(f"{c} ({'closed form' if m.closed_form else 'integral (F-22), quadrature'})" for c, m in models.items())
+    top = header(
+        [
+            f"Source: law '{law.name}' ({source}), f = {' '.join(law.source.split())}",
+            f"Calculi: {forms}",
+            *([f"Parameter ranges (RANGES): f >= 0 and finite over them, {law.range_check}"] if law.range_check else []),
+            f"Source hash: {digest}",
+            f"Regenerate: fricgen generate {law.name}",
+        ]
+    )
+    doc = (
+        f"Kernels of the friction law {law.name}: f = {law.source}.\n\n"
+        "Arguments: u tangential speed (>= 0), w weight value w(r), r centre distance, mu contact\n"
+        "mobility, kT thermal energy, params parameter values in the order of PARAMETERS.\n"
+        "contact_<calculus> returns (f/u, sqrt(D)); at u = 0 the direction is undefined and f/u is its\n"
+        "limit u -> 0+ where finite (viscous laws) and 0 otherwise (static friction: no force).\n"
+    )
+    parts = [top, quote_doc(doc) + "\n", "import math\n", "import numba\n"]
+    parts.append(
+        f"\nLAW = {law.name!r}\nSOURCE_HASH = {digest!r}\n"
+        f"PARAMETERS = {tuple(p.name for p in law.parameters)!r}\n"
+        f"DEFAULTS = {tuple(float(p.default) for p in law.parameters)!r}\n"
+        f"RANGES = {ranges_literal([p.range for p in law.parameters])}\n"
+        f"UNITS = {tuple(p.unit for p in law.parameters)!r}\n"
+        f"CALCULI = {tuple(models)!r}\n"
+        f"CLOSED_FORM = {{{', '.join(f'{c!r}: {m.closed_form}' for c, m in models.items())}}}\n"
+        f"HAS_WEIGHT = {law.weight is not None}\n"
+    )
+    needs_quadrature = not all(m.closed_form for m in models.values())
+    if needs_quadrature:
+        parts.append("\n" + _quadrature_constants())
+    functions = []
+    if law.weight is not None:
+        lhs = f"w(r) = -dU/dr of the potential {law.weight_source}" if law.weight_source in PAIR_POTENTIALS else "w(r)"
+        functions.append(_kernel("weight", "r, params", law.weight, equation(lhs, law.weight, "the weight in f"), params))
+    doc = f"f(u, w, r) = {law.source}, the magnitude of the friction force (it opposes the sliding)."
+    functions.append(_kernel("friction", "u, w, r, params", law.friction, doc, params))
+    ratio = sp.piecewise_fold((law.friction / u).rewrite(sp.Piecewise))
+    at_zero = zero_speed_limit(ratio)
+    doc = equation("f/u", ratio, f"the factor of the tangential velocity{zero_speed_note(at_zero)}")
+    functions.append(_kernel("friction_over_u", "u, w, r, params", ratio, doc, params, zero_speed_guard(at_zero)))
+    if needs_quadrature:
+        cuts = switches(law.friction)
+        for k, g in enumerate(cuts):
+            doc = f"A branch condition of f changes where this changes sign: {cut(str(compact(g)))} (see _next_cut)."
+            functions.append(_kernel(f"_switch_{k}", "u, w, r, params", g, doc, params))
+        functions.append(tail_kernels(QUADRATURE_ORDER, len(cuts)))
+    args = "u, w, r, mu, kT, params"
+    for c, model in models.items():
+        a = compact(model.variance_scale)
+        if model.closed_form:
+            at_zero = zero_speed_limit(model.amplitude)
+            at_zero = None if at_zero is sp.nan else at_zero  # no limit known: D is evaluated at u = 0 as it stands
+            how = "D = f/u as nu = 0" if a == 0 else f"(F-22) in closed form with kT nu = {a}"
+            doc = equation("D(u)", model.amplitude, f"the {c} calculus: {how}{zero_speed_note(at_zero)}")
+            functions.append(_kernel(f"noise_amplitude_{c}", args, model.amplitude, doc, params, zero_speed_guard(at_zero)))
+        else:
+            doc = (
+                f"D(u) = (1/a) int_u^oo f(s) exp(-(s**2 - u**2)/(2*a)) ds (F-22), a = kT nu = {a} ({c} calculus),\n"
+                f"f(s) = {cut(str(compact(law.friction.subs(u, s))))}: Gauss-Legendre quadrature on geometric panels (_gaussian_tail)."
+                + (f"\nNo closed form: {cut(model.reason)}." if model.reason else "")
+            )
+            functions.append(
+                f"{_decorator(args)}\ndef noise_amplitude_{c}({args}):\n"
+                f"{INDENT}{quote_doc(doc.replace(chr(10), chr(10) + INDENT))}\n"
+                f"{INDENT}return _gaussian_tail(u, {KernelPrinter().doprint(model.variance_scale)}, w, r, params)\n"
+            )
+        amplitude = short_formula(model.amplitude) if model.closed_form else None
+        value = f" = sqrt({amplitude})" if amplitude else ""
+        doc = f"sqrt(D(u)){value}, D = noise_amplitude_{c} ({c} calculus): the amplitude of the random contact force."
+        functions.append(
+            f"{_decorator(args)}\ndef noise_sqrt_{c}({args}):\n"
+            f"{INDENT}{quote_doc(doc)}\n"
+            f"{INDENT}return math.sqrt(noise_amplitude_{c}({args}))\n"
+        )
+        over_u = short_formula(ratio, FORMULA_LIMIT // 2 - len(amplitude or ""))
+        value = f" = ({over_u}, sqrt({amplitude}))" if amplitude and over_u else ""
+        doc = f"(f/u, sqrt(D)){value} of one contact ({c} calculus): friction_over_u and noise_sqrt_{c} in one call."
+        functions.append(
+            f"{_decorator(args, CONTACT_SIGNATURE)}\ndef contact_{c}({args}):\n"
+            f"{INDENT}{quote_doc(doc)}\n"
+            f"{INDENT}return friction_over_u(u, w, r, params), noise_sqrt_{c}({args})\n"
+        )
+    code = "".join("\n\n" + f for f in functions)
+    if "erfcx(" in code:
+        parts.insert(4, "\nfrom ..special import erfcx\n")
+    return "".join(parts) + code
+
+
+def potential_module(potential: Potential) -> str:
+    """The text of ``generated/potentials/<name>.py``: energy and force of a potential, and for an
+    external potential U(x) the force at many positions, force_field(xs, params, out)."""
+    names = list(potential.defaults) + (["kT"] if potential.energy.has(kT) else [])
+    symbols = {**potential.symbols, "kT": kT}
+    params = [symbols[n] for n in names]
+    defaults = [*potential.defaults.values(), *([1.0] if "kT" in names else [])]
+    digest = potential_source_hash(potential.name, potentials.SOURCE)
+    var = str(potential.variable)
+    top = header(
+        [
+            f"Source: potential '{potential.name}' (derive/potentials.py, {potential.reference})",
+            f"Source hash: {digest} (of derive/potentials.py, checked by fricgen.kernels.load_potential)",
+            "Regenerate: fricgen generate",
+        ]
+    )
+    doc = (
+        f"Potential {potential.name} ({potential.reference}): energy U({var}, params) and force -dU/d{var};\n"
+        "params in the order of PARAMETERS.\n"
+    )
+    constants = (
+        f"\nNAME = {potential.name!r}\nSOURCE_HASH = {digest!r}\n"
+        f"PARAMETERS = {tuple(names)!r}\nDEFAULTS = {tuple(float(v) for v in defaults)!r}\n"
+    )
+    functions = [
+        _kernel("energy", f"{var}, params", potential.energy, equation(f"U({var})", potential.energy, "the potential energy"), params),
+        _kernel("force", f"{var}, params", potential.force, equation(f"F({var}) = -dU/d{var}", potential.force, "the force"), params),
+    ]
+    if potential.name in EXTERNAL_POTENTIALS:
+        functions.append(FIELD_KERNEL.format(decorator=_decorator("xs, params, out")).lstrip("\n"))
+    return top + quote_doc(doc) + "\n" + "import math\n" + "import numba\n" + constants + "".join("\n\n" + f for f in functions)
+
+
+def special_module() -> str:
+    text = SPECIAL_SOURCE.read_text()
+    digest = hashlib.sha256(text.encode()).hexdigest()
+    return header([f"Source: derive/kernel_sources/special.py (hand-written numerics), hash {digest}"]) + text
+
+
+def package_module(doc: str) -> str:
+    """The text of an ``__init__.py`` of generated/: its docstring."""
+    return header([]) + quote_doc(doc) + "\n"
