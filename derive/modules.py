@@ -104,6 +104,9 @@ def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, sou
         functions.append(_kernel("weight", "r, params", law.weight, equation(lhs, law.weight, "the weight in f"), params))
     doc = f"f(u, w, r) = {law.source}, the magnitude of the friction force (it opposes the sliding)."
     functions.append(_kernel("friction", "u, w, r, params", law.friction, doc, params))
+    slope = sp.diff(sp.piecewise_fold(law.friction.rewrite(sp.Piecewise)), u)
+    doc = equation("df/du", slope, "the slope of f in u (the Itô drift of the HK calculus needs it, D' = (u f' - f)/u**2)")
+    functions.append(_kernel("friction_slope", "u, w, r, params", slope, doc, params))
     ratio = sp.piecewise_fold((law.friction / u).rewrite(sp.Piecewise))
     at_zero = zero_speed_limit(ratio)
     doc = equation("f/u", ratio, f"the factor of the tangential velocity{zero_speed_note(at_zero)}")

@@ -6,6 +6,7 @@ Rewrites (exact identities, applied before printing):
 - exp(A) erfc(B) -> erfcx(B) exp(A - B^2) with erfcx(x) = exp(x^2) erfc(x): the product
   overflows/underflows for large arguments, erfcx ~ 1/(x sqrt(pi)) does not (docs/physics.md#the-noise-amplitude-d);
 - c exp(x) - c -> c expm1(x): no cancellation for x -> 0 (branch thresholds of Min laws);
+- 1 - tanh(x)^2 -> 1/cosh(x)^2: no cancellation for large x (the slope of a tanh law);
 - products of numeric constants -> one float literal (no runtime sqrt(pi) etc.).
 """
 
@@ -54,6 +55,15 @@ def _expm1_pairs(expr: sp.Add) -> sp.Expr:
     return expr
 
 
+def _sech_squared(expr: sp.Add) -> sp.Expr:
+    terms = list(expr.args)
+    squares = [t for t in terms if (-t).is_Pow and (-t).exp == 2 and isinstance((-t).base, sp.tanh)]
+    if not squares or sp.S.One not in terms:
+        return expr
+    rest = [t for t in terms if t not in (sp.S.One, squares[0])]
+    return sp.Add(*rest, 1 / sp.cosh((-squares[0]).base.args[0]) ** 2)
+
+
 def _fold_constants(expr: sp.Mul) -> sp.Expr:
     numbers = [f for f in expr.args if f.is_number]
     if len(numbers) < 2 and not any(not f.is_Rational for f in numbers):
@@ -73,6 +83,7 @@ def stabilize(expr: sp.Expr) -> sp.Expr:
     """
     expr = expr.replace(lambda e: e.is_Mul, _scaled_erfc)
     expr = expr.replace(lambda e: e.is_Add, _expm1_pairs)
+    expr = expr.replace(lambda e: e.is_Add, _sech_squared)
     plain = {x: sp.Symbol(x.name) for x in expr.free_symbols}
     return sp.powsimp(expr.xreplace(plain), combine="base", force=True, deep=True)
 

@@ -5,7 +5,8 @@ kernel for exactly its type, tests/codegen/test_abi.py checks it); the engines t
 first-class functions of these types, so one compiled engine serves every law and potential:
 
 - ``SCALAR_KERNEL``: ``weight(r, params)``, a potential's ``energy(x, params)`` and ``force(x, params)``;
-- ``FRICTION_KERNEL``: ``friction(u, w, r, params)`` and ``friction_over_u(u, w, r, params)``;
+- ``FRICTION_KERNEL``: ``friction(u, w, r, params)``, ``friction_over_u(u, w, r, params)`` and
+  ``friction_slope(u, w, r, params)`` = df/du;
 - ``NOISE_KERNEL``: ``noise_amplitude_<c>(u, w, r, mu, kT, params)`` and ``noise_sqrt_<c>(...)``;
 - ``CONTACT_KERNEL``: ``contact_<c>(u, w, r, mu, kT, params)`` -> ``(f/u, sqrt(D))``;
 - ``FIELD_KERNEL``: ``force_field(xs, params, out)`` of an external potential (out[i] = force(xs[i])).
@@ -17,11 +18,18 @@ derive/potentials.py when its weight is a potential), a potential's that of deri
 If the source was edited since, loading fails with the command that regenerates them. After a
 regeneration in the same process (a notebook), the module is reloaded, so the new kernels take
 effect at once. SymPy is never imported here.
+
+A law's name is looked up on the search path of :mod:`derive.catalogues`: the user's law folders
+(:func:`user_laws` blocks, ``FRICGEN_LAWS``), then the built-in catalogue. The kernels of a user
+folder DIR are those generated into DIR/generated/ (``fricgen generate --laws DIR LAW``); potentials
+are built-in only.
 """
 
 from __future__ import annotations
 
+import hashlib
 import importlib
+import importlib.util
 import sys
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -32,7 +40,8 @@ import numba
 import numpy as np
 from numba import types
 
-from derive.lawdata import CATALOGUE, POSITIVE, Interval, LawFileError, potential_source_hash, read_law_data, source_hash, weight_potential
+from derive.catalogues import CatalogueError, find_law, generate_command, is_built_in, kernel_folder, user_laws
+from derive.lawdata import POSITIVE, Interval, LawFileError, potential_source_hash, read_law_data, source_hash, weight_potential
 
 from .errors import ConfigError, KernelError
 
@@ -43,7 +52,7 @@ _V = types.Array(_F, 1, "C")  # float64[::1]: params, and the positions and forc
 
 #: weight(r, params), energy(x, params), force(x, params) -> float64.
 SCALAR_KERNEL = types.FunctionType(_F(_F, _V))
-#: friction(u, w, r, params), friction_over_u(u, w, r, params) -> float64.
+#: friction(u, w, r, params), friction_over_u(u, w, r, params), friction_slope(u, w, r, params) -> float64.
 FRICTION_KERNEL = types.FunctionType(_F(_F, _F, _F, _V))
 #: noise_amplitude_<c>(u, w, r, mu, kT, params) -> D, noise_sqrt_<c>(...) -> sqrt(D).
 NOISE_KERNEL = types.FunctionType(_F(_F, _F, _F, _F, _F, _V))
@@ -66,7 +75,7 @@ def no_weight(r, params):
 class LawKernels:
     """Compiled kernels of one friction law (see the generated module for the equations).
 
-    Kernel arguments: ``(u, w, r, p)`` for ``friction`` and ``friction_over_u``, ``(r, p)`` for
+    Kernel arguments: ``(u, w, r, p)`` for ``friction``, ``friction_over_u`` and ``friction_slope``, ``(r, p)`` for
     ``weight``, ``(u, w, r, mu, kT, p)`` for the noise kernels, with ``p`` from
     :meth:`parameters`.
     """
@@ -141,6 +150,11 @@ class LawKernels:
         return self.module.friction_over_u
 
     @property
+    def friction_slope(self):
+        """df/du(u, w, r, p)."""
+        return self.module.friction_slope
+
+    @property
     def weight(self):
         if not self.has_weight:
             raise KernelError(f"law {self.name} has no weight w(r)")
@@ -148,42 +162,59 @@ class LawKernels:
 
 
 def _import(module_name: str, missing: Callable[[], KernelError], what: str, reload: bool = False) -> ModuleType:
-    """Import (or reload) a generated module. Its absence raises ``missing()``; a dependency that cannot
-    be imported (numba not installed, a broken generated/special.py) a KernelError that says so."""
+    """Import (or reload) a generated module. Its absence, or that of a module of its package, raises
+    ``missing()``; a dependency that cannot be imported (numba not installed, a broken special.py) a
+    KernelError that says so."""
     try:
         return importlib.reload(sys.modules[module_name]) if reload else importlib.import_module(module_name)
     except ModuleNotFoundError as error:
-        if error.name is None or module_name == error.name or module_name.startswith(error.name + "."):
+        if error.name is None or error.name.split(".")[0] == module_name.split(".")[0]:
             raise missing() from error
         raise KernelError(f"{error.name} is not installed: {what} need it ({error}); install it, e.g. pip install {error.name}") from error
     except ImportError as error:
         raise KernelError(f"cannot import {what} ({module_name}): {error}") from error
 
 
-def load_law_kernels(name: str, catalogue: Path = CATALOGUE) -> LawKernels:
-    """Kernels of the catalogue law ``name``; raises KernelError if missing or stale."""
-    path = Path(catalogue) / f"{name}.toml"
-    if not path.exists():
-        available = sorted(p.stem for p in Path(catalogue).glob("*.toml"))
-        raise KernelError(f"no law {name!r} in the catalogue {catalogue}; it has {available}")
+def _kernel_package(catalogue: Path, missing: Callable[[], KernelError]) -> str:
+    """The module name of the package that holds a catalogue's kernels: ``generated`` for the built-in
+    catalogue; for a user folder DIR, DIR/generated/ imported by its path under a name of its own
+    (stable: from the folder's path), so that Numba's cache and the reload after a regeneration work."""
+    if is_built_in(catalogue):
+        return "generated"
+    folder = kernel_folder(catalogue)
+    name = "fricgen_user_laws_" + hashlib.sha256(str(folder).encode()).hexdigest()[:16]
+    if name not in sys.modules:
+        if not (folder / "__init__.py").is_file():
+            raise missing()
+        spec = importlib.util.spec_from_file_location(name, folder / "__init__.py", submodule_search_locations=[str(folder)])
+        package = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(package)
+        sys.modules[name] = package
+    return name
+
+
+def load_law_kernels(name: str, catalogue: str | Path | None = None) -> LawKernels:
+    """Kernels of the law ``name`` from the catalogue folder ``catalogue``, by default the first on the
+    search path (user folders: :func:`user_laws`, FRICGEN_LAWS; then the built-in catalogue) that has
+    it; raises KernelError if the law is unknown, its kernels missing or stale."""
     try:
+        path = find_law(name, catalogue)
         data = read_law_data(path)
         digest = source_hash(data)
-    except LawFileError as error:
+    except (CatalogueError, LawFileError) as error:
         raise KernelError(str(error)) from error
-    module_name = f"generated.laws.{name}"
+    command = generate_command(name, path.parent)
 
     def missing():
-        return KernelError(f"no generated kernels for law {name}: run `fricgen generate {name}`")
+        return KernelError(f"no generated kernels for law {name}: run `{command}`")
 
+    module_name = f"{_kernel_package(path.parent, missing)}.laws.{name}"
     module = _import(module_name, missing, f"the kernels of law {name}")
     if module.SOURCE_HASH != digest:
         module = _import(module_name, missing, f"the kernels of law {name}", reload=True)  # regenerated since it was imported?
     if module.SOURCE_HASH != digest:
         changed = str(path) if weight_potential(data) is None else f"{path} or derive/potentials.py (its weight {data['weight']})"
-        raise KernelError(
-            f"the kernels of law {name} are stale: {changed} changed after they were generated; run `fricgen generate {name}`"
-        )
+        raise KernelError(f"the kernels of law {name} are stale: {changed} changed after they were generated; run `{command}`")
     return LawKernels(name, module)
 
 
@@ -220,4 +251,5 @@ __all__ = [
     "load_law_kernels",
     "load_potential",
     "no_weight",
+    "user_laws",
 ]

@@ -34,7 +34,7 @@ def abi_of(name: str):
     """The ABI type a generated kernel of this name must have."""
     if name in ("weight", "energy", "force"):
         return SCALAR_KERNEL
-    if name in ("friction", "friction_over_u"):
+    if name in ("friction", "friction_over_u", "friction_slope"):
         return FRICTION_KERNEL
     if name.startswith(("noise_amplitude_", "noise_sqrt_")):
         return NOISE_KERNEL
@@ -82,7 +82,7 @@ def test_printed_contact_signature_is_the_abi():
 def test_law_kernels_are_compiled_for_exactly_their_abi_type(name):
     law = load_law_kernels(name)
     kernels = kernels_of(law.module)
-    expected = {"friction", "friction_over_u"} | {f"{k}_{c}" for c in law.calculi for k in ("noise_amplitude", "noise_sqrt", "contact")}
+    expected = {"friction", "friction_over_u", "friction_slope"} | {f"{k}_{c}" for c in law.calculi for k in ("noise_amplitude", "noise_sqrt", "contact")}
     assert set(kernels) == expected | ({"weight"} if law.has_weight else set())
     for kernel_name, kernel in kernels.items():
         signature = abi_of(kernel_name).signature

@@ -82,8 +82,12 @@ def test_friction_kernels_match_their_expressions(laws, kernels):
             values = {**law.defaults, w: weight, r: 1.0}
             f_exact = reference(law.friction, values)
             ratio_exact = reference(sp.piecewise_fold((law.friction / u).rewrite(sp.Piecewise)), values)
-            for x in speeds(1.0, thresholds(law.friction, values)):
+            slope = sp.simplify(sp.diff(sp.piecewise_fold(law.friction.rewrite(sp.Piecewise)), u))  # 1/cosh^2, not 1 - tanh^2
+            slope_exact = reference(slope, values)
+            kinks = thresholds(law.friction, values)
+            for x in speeds(1.0, kinks):
                 assert k.friction(x, weight, 1.0, params) == pytest.approx(f_exact(x), rel=1e-12, abs=1e-300)
+                assert x in kinks or k.friction_slope(x, weight, 1.0, params) == pytest.approx(slope_exact(x), rel=1e-12, abs=1e-300)
                 over = k.friction_over_u(x, weight, 1.0, params)
                 assert math.isfinite(over)
                 if x > 0:
