@@ -82,7 +82,9 @@ def test_printed_contact_signature_is_the_abi():
 def test_law_kernels_are_compiled_for_exactly_their_abi_type(name):
     law = load_law_kernels(name)
     kernels = kernels_of(law.module)
-    expected = {"friction", "friction_over_u", "friction_slope"} | {f"{k}_{c}" for c in law.calculi for k in ("noise_amplitude", "noise_sqrt", "contact")}
+    expected = {"friction", "friction_over_u", "friction_slope"} | {
+        f"{k}_{c}" for c in law.calculi for k in ("noise_amplitude", "noise_sqrt", "contact")
+    }
     assert set(kernels) == expected | ({"weight"} if law.has_weight else set())
     for kernel_name, kernel in kernels.items():
         signature = abi_of(kernel_name).signature
