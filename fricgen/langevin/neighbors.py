@@ -19,14 +19,10 @@ def minimum_image(d, length, inverse):
     return d - length * np.rint(d * inverse)
 
 
-@numba.njit(cache=True)
+@numba.njit(inline="always", cache=True)
 def _offsets(n):
-    """Distinct neighbour-cell offsets along one direction with n cells."""
-    if n >= 3:
-        return np.array([-1, 0, 1])
-    if n == 2:
-        return np.array([0, 1])
-    return np.array([0])
+    """The distinct neighbour-cell offsets along a direction with n cells: range(first, last + 1)."""
+    return (-1, 1) if n >= 3 else (0, min(n - 1, 1))
 
 
 @numba.njit(cache=True)
@@ -56,28 +52,25 @@ def _visit(i, pos, box, dims, cutoff2, cells, out, fill):
     """Count (fill=False) or write (fill=True) the neighbours of i; returns the count.
     ``cells`` = (cells per direction, cell of each particle, particles sorted by cell, first of each cell)."""
     n, cell, order, first = cells
-    c = cell[i]
-    coords = np.zeros(3, dtype=np.int64)
-    rest = c
-    for a in range(dims - 1, -1, -1):
-        coords[a] = rest % n[a]
-        rest //= n[a]
+    nx, ny, nz = n[0], n[1], n[2]
+    cx, cy, cz = (cell[i] // (ny * nz), (cell[i] // nz) % ny, cell[i] % nz) if dims == 3 else (cell[i] // ny, cell[i] % ny, 0)
+    (x0, x1), (y0, y1), (z0, z1) = _offsets(nx), _offsets(ny), _offsets(nz) if dims == 3 else (0, 0)
+    inv_x, inv_y, inv_z = 1.0 / box[0], 1.0 / box[1], 1.0 / box[2] if dims == 3 else 0.0
     count = 0
-    ox, oy, oz = _offsets(n[0]), _offsets(n[1]), _offsets(n[2]) if dims == 3 else np.array([0])
-    for dx in ox:
-        for dy in oy:
-            for dz in oz:
-                shift = (dx, dy, dz)
-                index = 0
-                for a in range(dims):
-                    index = index * n[a] + (coords[a] + shift[a]) % n[a]
+    for dx in range(x0, x1 + 1):
+        for dy in range(y0, y1 + 1):
+            for dz in range(z0, z1 + 1):
+                index = ((cx + dx) % nx * ny + (cy + dy) % ny) * nz + (cz + dz) % nz
                 for slot in range(first[index], first[index + 1]):
                     k = order[slot]
                     if k == i:
                         continue
-                    r2 = 0.0
-                    for a in range(dims):
-                        d = minimum_image(pos[k, a] - pos[i, a], box[a], 1.0 / box[a])
+                    d = minimum_image(pos[k, 0] - pos[i, 0], box[0], inv_x)
+                    r2 = d * d
+                    d = minimum_image(pos[k, 1] - pos[i, 1], box[1], inv_y)
+                    r2 += d * d
+                    if dims == 3:
+                        d = minimum_image(pos[k, 2] - pos[i, 2], box[2], inv_z)
                         r2 += d * d
                     if r2 < cutoff2:
                         if fill:
