@@ -1,6 +1,7 @@
 """Emission of verified models and potentials as Numba modules in ``generated/``.
 
-Layout written by :func:`generate`::
+Layout written by :func:`generate` (for a user's law folder DIR into DIR/generated/, without the
+potentials, which are built-in only; see derive.catalogues)::
 
     generated/__init__.py
     generated/special.py              erfcx (copied from derive/kernel_sources/special.py)
@@ -24,6 +25,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from . import potentials
+from .catalogues import GENERATED, generate_command, is_built_in, kernel_folder
 from .errors import DeriveError
 from .expressions import time_limit
 from .kernel_code import CONTACT_SIGNATURE, DECORATOR, SIGNATURES
@@ -35,7 +37,6 @@ from .noise import NoiseModel, derive_noise
 from .potentials import EXTERNAL_POTENTIALS, PAIR_POTENTIALS, check_external
 from .verification import Report, verify
 
-GENERATED = Path(__file__).resolve().parent.parent / "generated"
 #: Wall-time limit (seconds) of the derivation and verification of one law in one calculus: SymPy's
 #: cost grows steeply with f (a polynomial of degree 30 takes minutes), and no size limit bounds it.
 DERIVATION_TIME_LIMIT = 600.0
@@ -84,13 +85,16 @@ def verified_models(law: FrictionLaw, seconds: float | None = DERIVATION_TIME_LI
     return models, reports
 
 
-def generate(names: list[str] | None = None, catalogue: Path = CATALOGUE, output: Path = GENERATED) -> tuple[list[Written], list[Report]]:
-    """Derive, verify and emit laws of the catalogue (all by default), potentials and helpers.
+def generate(names: list[str] | None = None, catalogue: Path = CATALOGUE, output: Path | None = None) -> tuple[list[Written], list[Report]]:
+    """Derive, verify and emit laws of the catalogue (all by default) and helpers into ``output``, by
+    default the catalogue's kernel folder (the package's generated/, or DIR/generated for a user's law
+    folder DIR); the potentials with the built-in catalogue only.
 
     Idempotent: unchanged files are not touched. With ``names`` None, modules of laws no longer
     in the catalogue are removed.
     """
-    catalogue, output = Path(catalogue), Path(output)
+    catalogue, built_in = Path(catalogue), is_built_in(catalogue)
+    output = kernel_folder(catalogue) if output is None else Path(output)
     if POTENTIALS_SOURCE.read_bytes() != potentials.SOURCE:
         raise GenerationError(
             f"{POTENTIALS_SOURCE} changed since derive.potentials was imported: the potentials and the weights of laws would be"
@@ -106,22 +110,17 @@ def generate(names: list[str] | None = None, catalogue: Path = CATALOGUE, output
         ),
         write_if_changed(output / "special.py", special_module()),
         write_if_changed(output / "laws" / "__init__.py", package_module("Kernels of the friction laws, one module per law.\n")),
-        write_if_changed(output / "potentials" / "__init__.py", package_module("Kernels of the conservative potentials.\n")),
     ]
-    for potential in EXTERNAL_POTENTIALS.values():
-        try:
-            check_external(potential)
-        except ValueError as error:
-            raise GenerationError(f"{error}: nothing emitted") from error
-    for potential in {**PAIR_POTENTIALS, **EXTERNAL_POTENTIALS}.values():
-        written.append(write_if_changed(output / "potentials" / f"{potential.name}.py", potential_module(potential)))
+    if built_in:
+        written += _emit_potentials(output)
     reports = []
     for name in names or available:
         path = catalogue / f"{name}.toml"
         law = load_law(path)
         models, law_reports = verified_models(law)
         reports += law_reports
-        text = law_module(law, models, law.source_hash, f"derive/catalogue/{name}.toml")
+        source = f"derive/catalogue/{name}.toml" if built_in else f"{catalogue.resolve().name}/{name}.toml"
+        text = law_module(law, models, law.source_hash, source, generate_command(name, catalogue))
         written.append(write_if_changed(output / "laws" / f"{name}.py", text))
     if names is None:
         for orphan in sorted((output / "laws").glob("*.py")):
@@ -129,6 +128,19 @@ def generate(names: list[str] | None = None, catalogue: Path = CATALOGUE, output
                 orphan.unlink()
                 written.append(Written(orphan, "removed"))
     return written, reports
+
+
+def _emit_potentials(output: Path) -> list[Written]:
+    """The package of the potentials' kernels (external ones checked periodic first)."""
+    for potential in EXTERNAL_POTENTIALS.values():
+        try:
+            check_external(potential)
+        except ValueError as error:
+            raise GenerationError(f"{error}: nothing emitted") from error
+    written = [write_if_changed(output / "potentials" / "__init__.py", package_module("Kernels of the conservative potentials.\n"))]
+    for potential in {**PAIR_POTENTIALS, **EXTERNAL_POTENTIALS}.values():
+        written.append(write_if_changed(output / "potentials" / f"{potential.name}.py", potential_module(potential)))
+    return written
 
 
 __all__ = [

@@ -64,8 +64,9 @@ def _quadrature_constants() -> str:
     return f"_GL_NODES = ({as_tuple(repr(float(x)) for x in nodes)},)\n_GL_WEIGHTS = ({as_tuple(repr(float(x)) for x in weights)},)\n"
 
 
-def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, source: str) -> str:
-    """The text of ``generated/laws/<law>.py`` for verified models of ``law``."""
+def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, source: str, regenerate: str = "") -> str:
+    """The text of ``generated/laws/<law>.py`` for verified models of ``law``; ``regenerate`` is the
+    command that regenerates it (``fricgen generate LAW`` by default)."""
     params = [p.symbol for p in law.parameters]
     forms = ", ".join(f"{c} ({'closed form' if m.closed_form else 'integral (F-22), quadrature'})" for c, m in models.items())
     top = header(
@@ -74,7 +75,7 @@ def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, sou
             f"Calculi: {forms}",
             *([f"Parameter ranges (RANGES): f >= 0 and finite over them, {law.range_check}"] if law.range_check else []),
             f"Source hash: {digest}",
-            f"Regenerate: fricgen generate {law.name}",
+            f"Regenerate: {regenerate or f'fricgen generate {law.name}'}",
         ]
     )
     doc = (

@@ -15,7 +15,7 @@ ROOT = Path(__file__).resolve().parents[1]
 KERNEL_LAYER = {"fricgen.kernels", "fricgen.rng", "fricgen.schema", "fricgen.errors"}
 ENGINES = ("fricgen.langevin", "fricgen.rods")
 #: What an engine may import from derive: the plain-data modules, no SymPy.
-DERIVE_DATA = {"derive.calculus", "derive.lawdata", "derive.errors"}
+DERIVE_DATA = {"derive.calculus", "derive.lawdata", "derive.catalogues", "derive.errors"}
 
 
 def _modules_after(statement):

@@ -17,80 +17,10 @@ import typing
 from derive.calculus import CALCULI
 from derive.errors import DeriveError
 
-from ..errors import ConfigError, FricgenError
+from ..errors import FricgenError
+from . import laws
 from .arguments import Parser, UsageError, join_negative_values, named_by_flags
 from .outputs import dumps
-
-
-def _check_law_names(names: list[str]) -> None:
-    """Every name is a law of the catalogue (its files, read without SymPy); ConfigError at LAW otherwise."""
-    from derive.lawdata import CATALOGUE
-
-    available = sorted(path.stem for path in CATALOGUE.glob("*.toml"))
-    unknown = [name for name in names if name not in available]
-    if unknown:
-        raise ConfigError(
-            "LAW", f"unknown law {', '.join(map(repr, unknown))}: not in the catalogue", f"choose from {', '.join(available)}"
-        )
-
-
-def _check_calculus(law: str, calculus: str) -> None:
-    """The law's generated kernels exist, are fresh and have the calculus (ConfigError at --calculus)."""
-    from ..kernels import load_law_kernels
-
-    calculi = load_law_kernels(law).calculi
-    if calculus not in calculi:
-        raise ConfigError("--calculus", f"law {law} has no kernels for the {calculus!r} calculus", f"choose one of {list(calculi)}")
-
-
-def _verify(args: argparse.Namespace) -> int:
-    """fricgen verify [LAW ...] [--calculus C|all] [--json]: derive and verify, exit 1 on failure."""
-    _check_law_names(args.laws)
-    from derive import catalogue, derive_noise, verify
-
-    laws = catalogue()
-    named = set(args.laws)
-    calculi = CALCULI if args.calculus == "all" else (args.calculus,)
-    reports = []
-    for name in args.laws or laws:
-        law = laws[name]
-        for calculus in calculi:
-            if calculus not in law.calculi and name not in named:
-                print(
-                    f"skipped {name}/{calculus}: not among the law's calculi {list(law.calculi)} (name the law to verify it anyway)",
-                    file=sys.stderr,
-                )
-                continue
-            report = verify(derive_noise(law, calculus))
-            reports.append(report)
-            if not args.json:
-                status = "verified" if report.verified else "FAILED"
-                form = "closed form" if report.closed_form else "integral (F-22)"
-                failed = [k for k, v in report.checks.items() if not v]
-                extra = f"  failed: {failed} {report.details}" if failed else ""
-                print(f"{name:20s} {calculus:13s} {form:16s} {status:9s} {report.seconds:6.2f} s{extra}", flush=True)
-    if args.json:
-        print(dumps([r.as_dict() for r in reports]))
-    return 0 if all(r.verified for r in reports) else 1
-
-
-def _generate(args: argparse.Namespace) -> int:
-    """fricgen generate [LAW ...]: derive, verify and emit kernels (idempotent)."""
-    from pathlib import Path
-
-    from .outputs import check_folder
-
-    _check_law_names(args.laws)
-    if args.output:
-        check_folder(Path(args.output), "--output")
-    from derive.emit import GENERATED, generate
-
-    written, reports = generate(args.laws or None, output=args.output or GENERATED)
-    for report in reports:
-        print(f"verified {report.law}/{report.calculus} ({'closed form' if report.closed_form else 'integral (F-22)'})")
-    for item in written:
-        print(f"{item.status:9s} {item.path}")
-    return 0
 
 
 def _floats(text: str) -> list[float]:
@@ -114,8 +44,8 @@ def _noise(args: argparse.Namespace) -> int:
     """fricgen noise LAW ...: D(u) through the generated kernels, as JSON."""
     from .noise import NoiseQuery, evaluate
 
-    _check_law_names([args.law])
-    _check_calculus(args.law, args.calculus)
+    laws.check_law_names([args.law])
+    laws.check_calculus(args.law, args.calculus)
     query = NoiseQuery(tuple(args.u), args.r, args.w, args.mu, args.kT)
     with named_by_flags({}):
         result = evaluate(args.law, args.calculus, query, dict(args.param))
@@ -146,8 +76,8 @@ def _thermostat_check(args: argparse.Namespace) -> int:
     """fricgen thermostat-check LAW ...: the statistical test of a law's thermostat, as JSON."""
     from ..langevin.thermostat_check import passive_check, passive_run
 
-    _check_law_names([args.law])
-    _check_calculus(args.law, args.calculus)
+    laws.check_law_names([args.law])
+    laws.check_calculus(args.law, args.calculus)
     options = {"dim": args.dim, "calculus": args.calculus, "n": args.n, "phi": args.phi, "dt": args.dt, "kT": args.kT}
     with named_by_flags(CHECK_FLAGS):
         check = passive_check(
@@ -185,10 +115,10 @@ def _demo(args: argparse.Namespace) -> int:
 
 
 def _run(args: argparse.Namespace) -> int:
-    """fricgen run CONFIG [--set KEY=VALUE ...] [--steps N] [--out DIR] [--resume CHECKPOINT] [--json]."""
+    """fricgen run CONFIG [--set KEY=VALUE ...] [--steps N] [--out DIR] [--resume CHECKPOINT] [--laws DIR] [--json]."""
     from .runner import execute, plan
 
-    return execute(plan(args.config, args.set, args.steps, args.out, args.resume), args.json)
+    return execute(plan(args.config, args.set, args.steps, args.out, args.resume, args.law_folders), args.json)
 
 
 def _bcd(args: argparse.Namespace) -> int:
@@ -282,15 +212,19 @@ def parser() -> argparse.ArgumentParser:
     main = Parser(prog="fricgen", description=__doc__)
     commands = main.add_subparsers(dest="command", required=True)
     verify = commands.add_parser("verify", help="derive D(u, r) for catalogue laws and verify zero probability current")
-    verify.add_argument("laws", nargs="*", metavar="LAW", help="law names (default: the whole catalogue)")
+    verify.add_argument("laws", nargs="*", metavar="LAW", help="law names (default: the laws of your law folders, else the catalogue)")
     verify.add_argument("--calculus", choices=(*CALCULI, "all"), default="all")
     verify.add_argument("--json", action="store_true", help="print one JSON array, one object per law and calculus")
-    verify.set_defaults(run=_verify)
+    laws.add_laws_flag(verify)
+    verify.set_defaults(run=laws.verify)
 
-    generate = commands.add_parser("generate", help="derive, verify and emit Numba kernels into generated/")
-    generate.add_argument("laws", nargs="*", metavar="LAW", help="law names (default: the whole catalogue)")
-    generate.add_argument("--output", metavar="DIR", help="emit into DIR instead of the package's generated/ (for inspection)")
-    generate.set_defaults(run=_generate)
+    generate = commands.add_parser(
+        "generate", help="derive, verify and emit Numba kernels into generated/ (of the package, or beside your --laws folder)"
+    )
+    generate.add_argument("laws", nargs="*", metavar="LAW", help="law names (default: the laws of your law folders, else the catalogue)")
+    generate.add_argument("--output", metavar="DIR", help="emit into DIR instead of the laws' generated/ (for inspection)")
+    laws.add_laws_flag(generate)
+    generate.set_defaults(run=laws.generate)
 
     noise = commands.add_parser("noise", help="evaluate D(u) of a law through its generated kernels")
     noise.add_argument("law", metavar="LAW")
@@ -303,6 +237,7 @@ def parser() -> argparse.ArgumentParser:
     noise.add_argument("--mu", type=float, default=7.0, help="contact mobility (default 7: equal spheres m = 1, R = 1/2)")
     noise.add_argument("--kT", type=float, default=1.0, help="thermal energy (default 1)")
     noise.add_argument("--json", action="store_true", help="print JSON with u, D, f, w, r, mu, kT, parameters")
+    laws.add_laws_flag(noise)
     noise.set_defaults(run=_noise)
 
     check = commands.add_parser("thermostat-check", help="statistical test: does the law thermalise a passive system to kT?")
@@ -319,6 +254,7 @@ def parser() -> argparse.ArgumentParser:
     check.add_argument("--seed", type=int, default=1)
     check.add_argument("--param", type=_assignment, action="append", default=[], metavar="NAME=VALUE")
     check.add_argument("--json", action="store_true")
+    laws.add_laws_flag(check)
     check.set_defaults(run=_thermostat_check)
 
     demo = commands.add_parser("demo", help="the main job: 2-D passive Coulomb-Newton system with and without contact noise")
@@ -333,6 +269,7 @@ def parser() -> argparse.ArgumentParser:
     run.add_argument("--out", metavar="DIR", help="output folder (default fricgen-<config name>)")
     run.add_argument("--resume", metavar="CHECKPOINT", help="continue from DIR/checkpoint.npz of a stopped run")
     run.add_argument("--json", action="store_true", help="print the summary as JSON")
+    laws.add_laws_flag(run)
     run.set_defaults(run=_run)
 
     bcd = commands.add_parser("bcd", help="hard or sticky rods in a periodic field (cosine by default) by BCD, against the exact theory")
@@ -352,7 +289,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         args = parser().parse_args(words)
         prog = f"fricgen {args.command}"
-        return args.run(args)
+        with laws.law_search(args):
+            return args.run(args)
     except UsageError as error:
         return _fail(error.prog, error, 2)
     except (FricgenError, DeriveError) as error:

@@ -1,8 +1,8 @@
 """Run configurations from TOML, checked in full (keys, types, values; :mod:`fricgen.app.build` adds
 the law's kernels and the initial state) before anything is written. One section per dataclass, a
 key per field; missing keys take the defaults. ``[law]``, ``[thermostat]``, ``[active]`` and
-``[bulk]`` are the Langevin engine's own sections (fricgen.langevin.config); ``[system]``,
-``[walls]``, ``[run]`` and ``[output]`` are defined here. Units: sigma = 1 (the diameter of a
+``[bulk]`` are the Langevin engine's own sections (fricgen.langevin.config; ``law.folder`` is added
+here); ``[system]``, ``[walls]``, ``[run]`` and ``[output]`` are defined here. Units: sigma = 1 (the diameter of a
 sphere of radius 1/2), kT = 1, m = 1, t0 = sqrt(m sigma^2 / kT).
 """
 
@@ -24,6 +24,23 @@ EXAMPLES = Path(__file__).with_name("examples")
 
 #: The observables a run can tabulate (fricgen.app.observables writes them).
 OBSERVABLES = ("temperatures", "velocity_profile")
+
+
+@dataclass(frozen=True)
+class RunLaw(Law):
+    """``[law]`` of a run: the engine's law section and ``folder``, a folder of your own law files
+    (relative to the configuration file; its kernels in folder/generated/), searched before
+    FRICGEN_LAWS's and the built-in catalogue."""
+
+    folder: str | None = None
+
+    @property
+    def folders(self) -> tuple[str, ...]:
+        return () if self.folder is None else (self.folder,)
+
+    def engine(self) -> Law:
+        """The engine's section (without ``folder``)."""
+        return Law(**{f.name: getattr(self, f.name) for f in dataclasses.fields(Law)})
 
 
 @dataclass(frozen=True)
@@ -135,7 +152,7 @@ class RunConfig(Section):
     """A validated configuration; ``walls`` is None without a ``[walls]`` section."""
 
     system: System
-    law: Law = field(default_factory=Law)
+    law: RunLaw = field(default_factory=RunLaw)
     thermostat: Thermostat = field(default_factory=Thermostat)
     active: Active = field(default_factory=Active)
     bulk: Bulk = field(default_factory=Bulk)
@@ -185,7 +202,7 @@ class RunConfig(Section):
 
     def langevin(self) -> LangevinConfig:
         """The engine's configuration: its own sections, the WCA strength and the seed."""
-        return LangevinConfig(self.law, self.thermostat, self.active, self.bulk, epsilon=self.system.epsilon, seed=self.run.seed)
+        return LangevinConfig(self.law.engine(), self.thermostat, self.active, self.bulk, epsilon=self.system.epsilon, seed=self.run.seed)
 
     def as_dict(self) -> dict:
         return dataclasses.asdict(self)
@@ -220,7 +237,8 @@ def parse_override(text: str) -> tuple[str, object]:
 
 
 def load_config(path: Path, overrides: list[tuple[str, object]] = ()) -> RunConfig:
-    """Read, override (``section.key`` paths) and validate a configuration (no files written)."""
+    """Read, override (``section.key`` paths) and validate a configuration (no files written); a
+    ``law.folder`` becomes an absolute path (relative ones are taken from the file's folder)."""
     try:
         data = tomllib.loads(path.read_text(encoding="utf-8-sig"))
     except UnicodeDecodeError as error:
@@ -239,7 +257,17 @@ def load_config(path: Path, overrides: list[tuple[str, object]] = ()) -> RunConf
             if not isinstance(table, dict):
                 raise ConfigError(key, f"{section} is not a table", "override a key inside a section, e.g. system.n")
         table[name] = value
-    return structure(RunConfig, {"system": {}, **data})
+    config = structure(RunConfig, {"system": {}, **data})
+    if config.law.folder is None:
+        return config
+    folder = path.parent / Path(config.law.folder).expanduser()
+    if not folder.is_dir():
+        raise ConfigError(
+            "law.folder",
+            f"{folder} {'is a file, not a folder' if folder.exists() else 'does not exist'}",
+            "give the folder of your law files, relative to the configuration file",
+        )
+    return dataclasses.replace(config, law=dataclasses.replace(config.law, folder=str(folder.resolve())))
 
 
 def check_fraction(key: str, fraction: float, s: System) -> None:

@@ -14,6 +14,7 @@ from __future__ import annotations
 import shlex
 import sys
 import time
+from collections.abc import Sequence
 from contextlib import closing
 from dataclasses import dataclass
 from pathlib import Path
@@ -21,6 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import ConfigError, SimulationError
+from ..kernels import user_laws
 from ..langevin.simulation import Simulation
 from ..langevin.trajectory import GSDWriter, load_checkpoint, save_checkpoint, truncate_trajectory
 from ..schema import differences
@@ -45,15 +47,22 @@ class Plan:
     command: list[str]
 
 
-def plan(source: str, settings: list[str], steps: int | None, out: str | None, resume: str | None) -> Plan:
-    """Everything checked, nothing written: raises ConfigError naming the key and the fix."""
+def plan(source: str, settings: list[str], steps: int | None, out: str | None, resume: str | None, laws: Sequence[str] = ()) -> Plan:
+    """Everything checked, nothing written: raises ConfigError naming the key and the fix. ``laws``:
+    user law folders (``--laws``), searched with the configuration's ``law.folder``."""
     path = resolve_source(source)
     overrides = [parse_override(text) for text in settings] + ([("run.steps", steps)] if steps is not None else [])
     config = load_config(path, overrides)
     command = ["fricgen", "run", source, *(arg for text in settings for arg in ("--set", text))]
     command += ["--steps", str(steps)] if steps is not None else []
+    command += [arg for folder in laws for arg in ("--laws", folder)]
+    with user_laws(*laws, *config.law.folders):  # the kernels are loaded here, by build and load_checkpoint
+        return _plan(config, command, out, resume, path.stem)
+
+
+def _plan(config: RunConfig, command: list[str], out: str | None, resume: str | None, name: str) -> Plan:
     if resume is None:
-        folder = Path(out) if out else Path(f"fricgen-{path.stem}")
+        folder = Path(out) if out else Path(f"fricgen-{name}")
         check_folder(folder, "--out")
         taken = [name for name in RUN_FILES if (folder / name).exists()]
         if taken:

@@ -63,13 +63,15 @@ def test_a_law_failing_verification_is_not_emitted(tmp_path):
 
 
 def test_stale_kernels_are_refused_with_the_command(tmp_path):
+    """A copy of the catalogue with its kernels beside it (a user's law folder), one law edited."""
     catalogue = tmp_path / "catalogue"
     shutil.copytree(CATALOGUE, catalogue)
+    shutil.copytree(GENERATED, catalogue / "generated", ignore=shutil.ignore_patterns("__pycache__", "potentials"))
     path = catalogue / "linear.toml"
     path.write_text(path.read_text().replace("default = 1.0", "default = 2.0"))
-    with pytest.raises(KernelError, match="stale.*fricgen generate linear"):
+    with pytest.raises(KernelError, match=f"stale.*`fricgen generate --laws {re.escape(str(catalogue.resolve()))} linear`"):
         load_law_kernels("linear", catalogue=catalogue)
-    assert load_law_kernels("coulomb", catalogue=catalogue).name == "coulomb"
+    assert load_law_kernels("coulomb", catalogue=catalogue).module.__file__ == str(catalogue / "generated" / "laws" / "coulomb.py")
 
 
 def test_a_law_file_edited_during_generation_leaves_stale_kernels(tmp_path, monkeypatch):

@@ -364,6 +364,14 @@ verify --calculus euler | --calculus | invalid choice: 'euler'
 generate stick_slip | LAW | unknown law 'stick_slip'
 generate linear --output {in}/afile | --output | is a file, not a folder
 generate linear --output /sys/fricgen-bad-input | --output | cannot write
+generate --laws nowhere | --laws | the law folder nowhere does not exist
+generate --laws {in}/afile linear | --laws | is a file, not a folder
+noise linear --u 1 --w 1 --laws nowhere | --laws | does not exist
+thermostat-check linear --laws nowhere | --laws | does not exist
+verify --laws nowhere | --laws | does not exist
+run passive --laws nowhere | --laws | does not exist
+run passive --set law.folder=nowhere | law.folder | does not exist
+run passive --set law.folder=1 | law.folder | must be a string
 frobnicate | command | invalid choice: 'frobnicate'
  | command | the following arguments are required
 """

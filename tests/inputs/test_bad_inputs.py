@@ -46,7 +46,7 @@ def trap(monkeypatch):
         "derive.emit": {"generate": _trap, "GENERATED": Path("generated")},
         "derive.noise": {"derive_noise": _trap},
         "derive.verification": {"verify": _trap},
-        "derive.laws": {"catalogue": _trap},
+        "derive.laws": {"catalogue": _trap, "load_law": _trap},
     }
     for name, attributes in fakes.items():
         monkeypatch.setitem(sys.modules, name, types.SimpleNamespace(**attributes))

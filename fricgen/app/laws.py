@@ -1,0 +1,120 @@
+"""Laws on the command line: the user's law folders (``--laws DIR``, ``FRICGEN_LAWS``), the look-up
+of law names, and the commands on law files, ``fricgen verify`` and ``fricgen generate``.
+
+A law name is looked up in the user's law folders, then in the built-in catalogue
+(derive.catalogues); the kernels of a folder DIR are generated into DIR/generated/.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import os
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+
+from derive.calculus import CALCULI
+from derive.catalogues import LAWS_ENV, CatalogueError, find_law, laws_by_catalogue, user_folders, user_laws
+
+from ..errors import ConfigError
+from .outputs import check_folder, dumps
+
+LAWS_HELP = (
+    "a folder of your own law files (LAW.toml), searched before the built-in catalogue; its kernels live in DIR/generated/ "
+    f"(repeatable; also ${LAWS_ENV}, folders joined by '{os.pathsep}')"
+)
+
+
+def add_laws_flag(command: argparse.ArgumentParser) -> None:
+    """``--laws DIR`` (repeatable) on a command that takes laws."""
+    command.add_argument("--laws", dest="law_folders", action="append", default=[], metavar="DIR", help=LAWS_HELP)
+
+
+@contextlib.contextmanager
+def law_search(args: argparse.Namespace) -> Iterator[None]:
+    """The block in which a command that takes laws looks them up: its ``--laws`` folders first, then
+    FRICGEN_LAWS's and the built-in catalogue; each folder checked (ConfigError at --laws or FRICGEN_LAWS)."""
+    if not hasattr(args, "law_folders"):  # a command without laws (demo, bcd)
+        yield
+        return
+    try:
+        block = user_laws(*args.law_folders)
+    except CatalogueError as error:
+        raise ConfigError("--laws", str(error)) from error
+    with block:
+        try:
+            user_folders()
+        except CatalogueError as error:
+            raise ConfigError(LAWS_ENV, str(error)) from error
+        yield
+
+
+def check_law_names(names: list[str]) -> None:
+    """Every name is a law on the search path, and in one catalogue only (ConfigError at LAW otherwise);
+    the files are found, not read."""
+    for name in names:
+        try:
+            find_law(name)
+        except CatalogueError as error:
+            raise ConfigError("LAW", str(error)) from error
+
+
+def check_calculus(law: str, calculus: str) -> None:
+    """The law's generated kernels exist, are fresh and have the calculus (ConfigError at --calculus)."""
+    from ..kernels import load_law_kernels
+
+    calculi = load_law_kernels(law).calculi
+    if calculus not in calculi:
+        raise ConfigError("--calculus", f"law {law} has no kernels for the {calculus!r} calculus", f"choose one of {list(calculi)}")
+
+
+def verify(args: argparse.Namespace) -> int:
+    """fricgen verify [LAW ...] [--calculus C|all] [--laws DIR] [--json]: derive and verify, exit 1 on failure."""
+    check_law_names(args.laws)
+    from derive import derive_noise, load_law, verify
+
+    named = set(args.laws)
+    calculi = CALCULI if args.calculus == "all" else (args.calculus,)
+    reports = []
+    for folder, names in laws_by_catalogue(args.laws).items():
+        for name in names:
+            law = load_law(folder / f"{name}.toml")
+            for calculus in calculi:
+                if calculus not in law.calculi and name not in named:
+                    print(
+                        f"skipped {name}/{calculus}: not among the law's calculi {list(law.calculi)} (name the law to verify it anyway)",
+                        file=sys.stderr,
+                    )
+                    continue
+                report = verify(derive_noise(law, calculus))
+                reports.append(report)
+                if not args.json:
+                    status = "verified" if report.verified else "FAILED"
+                    form = "closed form" if report.closed_form else "integral (F-22)"
+                    failed = [k for k, v in report.checks.items() if not v]
+                    extra = f"  failed: {failed} {report.details}" if failed else ""
+                    print(f"{name:20s} {calculus:13s} {form:16s} {status:9s} {report.seconds:6.2f} s{extra}", flush=True)
+    if args.json:
+        print(dumps([r.as_dict() for r in reports]))
+    return 0 if all(r.verified for r in reports) else 1
+
+
+def generate(args: argparse.Namespace) -> int:
+    """fricgen generate [LAW ...] [--laws DIR] [--output DIR]: derive, verify and emit kernels (idempotent),
+    each law's into the kernel folder of its catalogue."""
+    check_law_names(args.laws)
+    if args.output:
+        check_folder(Path(args.output), "--output")
+    from derive.emit import generate
+
+    groups = laws_by_catalogue(args.laws)
+    if args.output and len(groups) > 1:
+        raise ConfigError("--output", f"the laws come from {len(groups)} catalogues ({', '.join(map(str, groups))})", "name one's laws")
+    for folder, names in groups.items():
+        written, reports = generate(names if args.laws else None, catalogue=folder, output=args.output or None)
+        for report in reports:
+            print(f"verified {report.law}/{report.calculus} ({'closed form' if report.closed_form else 'integral (F-22)'})")
+        for item in written:
+            print(f"{item.status:9s} {item.path}")
+    return 0
