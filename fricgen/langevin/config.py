@@ -16,6 +16,8 @@ from derive.calculus import CALCULI, Calculus
 
 from ..schema import Section
 
+#: The contact steps: Metropolis-adjusted pair by pair (the default), or the explicit kick.
+CONTACT_SCHEMES = ("pairwise", "explicit")
 #: Law parameters that the engine sets itself, and what sets them.
 OWNED_PARAMETERS = {"sigma": "the radii (sigma_ik = R_i + R_k)", "epsilon": "system.epsilon (the WCA strength)"}
 
@@ -25,8 +27,11 @@ class Law(Section):
     """``[law]``: the catalogue law ``name`` with ``parameters`` overriding its defaults, the
     ``calculus`` of its noise amplitude D (ito, stratonovich, hk), integrated by the calculus' own
     scheme (docs/physics.md#integrators-that-match-the-calculus) unless ``scheme`` names another and
-    ``force_scheme`` is set (a wrong thermostat: for negative controls only). ``contact_noise = false``
-    drops the frictional noise (the inconsistent model), ``friction = false`` the contact entirely."""
+    ``force_scheme`` is set (a wrong thermostat: for negative controls only). ``contact_scheme`` is
+    "pairwise" (Metropolis-adjusted pair by pair: Maxwell–Boltzmann exact at any dt) or "explicit"
+    (the first-order kick, where a wrong D shows in the temperatures; docs/physics.md#the-pairwise-contact-step).
+    ``contact_noise = false`` drops the frictional noise (the inconsistent model), ``friction = false``
+    the contact entirely."""
 
     SECTION = "law"
     name: str = "coulomb_newton"
@@ -36,12 +41,19 @@ class Law(Section):
     parameters: dict[str, float] = field(default_factory=dict)
     scheme: str | None = None
     force_scheme: bool = False
+    contact_scheme: str = "pairwise"
 
     def __post_init__(self):
         self.require(
             self.calculus in CALCULI, "calculus", f"must be one of {CALCULI}, got {self.calculus!r}", 'for example calculus = "ito"'
         )
         self.require(self.scheme in (None, *CALCULI), "scheme", f"must be one of {CALCULI}, got {self.scheme!r}", "leave it out")
+        self.require(
+            self.contact_scheme in CONTACT_SCHEMES,
+            "contact_scheme",
+            f"must be one of {CONTACT_SCHEMES}, got {self.contact_scheme!r}",
+            'for example contact_scheme = "pairwise"',
+        )
         self.require(
             self.integrator == self.calculus or self.force_scheme,
             "scheme",

@@ -8,10 +8,13 @@ dt is the splitting B A O A C B (docs/physics.md#integrators-that-match-the-calc
 - A: x += v dt/2 and the orientation turns by omega dt/2 (q <- exp(omega dt/4) q, lab frame);
 - O: solvent, exact Ornstein–Uhlenbeck v <- c v + sqrt(kT (1 - c^2)/m) xi, c = exp(-gamma dt/m)
   (gamma_R, I for omega): no time-step bias of the solvent part;
-- C: contact kick v += dt F_f/m + J/m (omega likewise with torques; fricgen.langevin.pairs). D is
-  taken where the calculus demands: at the start (Itô, Euler–Maruyama), averaged over start and
-  predicted end (Stratonovich, stochastic Heun) or at the predicted end (Hänggi–Klimontovich); the
-  prediction is the Euler–Maruyama kick, same noise.
+- C: the contact, friction plus its noise, by one of two schemes (docs/physics.md#the-pairwise-contact-step):
+  pairwise (the default; fricgen.langevin.contact_step): the pairs in contact one after another, each
+  a Metropolis-adjusted update of its contact mode that keeps Maxwell–Boltzmann exact at any dt;
+  explicit: the kick v += dt F_f/m + J/m (omega likewise with torques; fricgen.langevin.pairs), first
+  order, with D taken where the calculus demands: at the start (Itô, Euler–Maruyama), averaged over
+  start and predicted end (Stratonovich, stochastic Heun) or at the predicted end
+  (Hänggi–Klimontovich); the prediction is the Euler–Maruyama kick, same noise.
 
 Immobile (wall) particles have inverse mass and inertia 0: they never move, and drop out of
 mu_ik = 1/m_i + 1/m_k + R_i^2/I_i + R_k^2/I_k. Kernels enter as first-class functions of the
@@ -29,8 +32,9 @@ from numba import types
 
 from derive.calculus import Calculus
 
-from ..kernels import CONTACT_KERNEL, SCALAR_KERNEL
+from ..kernels import CONTACT_KERNEL, FRICTION_KERNEL, SCALAR_KERNEL
 from ..rng import CONTACT, SOLVENT, normal_pair_at, stream_key
+from .contact_step import contact_step
 from .neighbors import build_neighbors, minimum_image
 from .pairs import PAIR_FIELDS, TERMS, WCA_RANGE, gather, pair_slots
 from .records import BODIES, COUPLINGS, DYNAMICS, MOTION
@@ -154,17 +158,20 @@ def _moved(pos, reference, dyn):
     return math.sqrt(largest)
 
 
-#: advance(motion, bodies, dynamics, couplings, potential force, contact, weight, first step, steps) -> (status, steps, builds)
-_ADVANCE = types.UniTuple(types.int64, 3)(
-    MOTION, BODIES, DYNAMICS, COUPLINGS, SCALAR_KERNEL, CONTACT_KERNEL, SCALAR_KERNEL, types.int64, types.int64
+#: advance(motion, bodies, dynamics, couplings, potential force, contact, friction slope, weight, first step, steps)
+#: -> (status, steps, neighbour builds, contact proposals, rejections, sum of rejection probabilities)
+_ADVANCE = types.Tuple([types.int64] * 5 + [types.float64])(
+    MOTION, BODIES, DYNAMICS, COUPLINGS, SCALAR_KERNEL, CONTACT_KERNEL, FRICTION_KERNEL, SCALAR_KERNEL, types.int64, types.int64
 )
 
 
 @numba.njit(_ADVANCE, cache=True)
-def advance(motion, bodies, dyn, couplings, pot_force, contact, weight, first_step, steps):
+def advance(motion, bodies, dyn, couplings, pot_force, contact, slope, weight, first_step, steps):
     """Advance the motion in place by ``steps`` steps from step ``first_step``; returns (status, steps
-    done, neighbour builds). Kernels: pair potential force(r / sigma_ik, params), contact(u, w, r, mu,
-    kT, params) -> (f/u, sqrt D) of the law's calculus, weight(r / sigma_ik, params).
+    done, neighbour builds) and the pairwise contact step's tally (proposals, rejections, sum of the
+    rejection probabilities 1 - min(1, alpha)). Kernels: pair potential force(r / sigma_ik, params),
+    contact(u, w, r, mu, kT, params) -> (f/u, sqrt D) of the law's calculus, slope(u, w, r, params) =
+    df/du, weight(r / sigma_ik, params).
 
     status: OK, NOT_FINITE (a velocity became inf or NaN) or OVERLAP (r < overlap_limit sigma_ik).
     Forces at the current positions are recomputed on entry, so chunked runs and restarts are
@@ -176,8 +183,9 @@ def advance(motion, bodies, dyn, couplings, pot_force, contact, weight, first_st
     lists = build_neighbors(pos, dyn.box, dims, cutoff)
     slots = np.zeros((lists[1].size, PAIR_FIELDS))
     reference = pos.copy()
-    builds = 1
-    terms, again = np.zeros((TERMS, size, 3)), np.zeros((TERMS, size, 3))
+    builds, proposals, rejections, rejection = 1, 0, 0, 0.0
+    explicit = dyn.friction and not dyn.pairwise
+    terms, again = np.zeros((TERMS if explicit else 1, size, 3)), np.zeros((TERMS, size, 3))  # the pairwise step needs the force alone
     new = (np.empty((size, 3)), np.empty((size, 3)))
     for n in range(-1, steps):
         step = first_step + max(n, 0)
@@ -192,21 +200,30 @@ def advance(motion, bodies, dyn, couplings, pot_force, contact, weight, first_st
                 reference[:] = pos
                 builds += 1
         key = stream_key(dyn.seed, step, CONTACT)
-        switches = (key, dyn.friction and n >= 0, dyn.noise, True)
+        switches = (key, explicit and n >= 0, dyn.noise, True)
         closest = pair_slots((pos, vel, omega), bodies, dyn, couplings, pot_force, contact, weight, lists, switches, slots)
         gather(bodies.radius, lists, slots, terms)
         if n < 0:  # forces at the initial positions for the first half kick
             continue
         if closest < dyn.overlap_limit:
-            return OVERLAP, n, builds
-        _contact_kick(motion, bodies, dyn, terms, new)
-        if dyn.friction and dyn.noise and dyn.scheme != _ITO:
-            pair_slots((pos, new[0], new[1]), bodies, dyn, couplings, pot_force, contact, weight, lists, (key, True, True, False), slots)
-            gather(bodies.radius, lists, slots, again)
-            _correct(new, bodies, dyn, terms, again)
-        if not (np.isfinite(new[0]).all() and np.isfinite(new[1]).all()):
-            return NOT_FINITE, n, builds
-        vel[:] = new[0]
-        omega[:] = new[1]
+            return OVERLAP, n, builds, proposals, rejections, rejection
+        velocities = (vel, omega)
+        if explicit:
+            _contact_kick(motion, bodies, dyn, terms, new)
+            if dyn.noise and dyn.scheme != _ITO:
+                pair_slots(
+                    (pos, new[0], new[1]), bodies, dyn, couplings, pot_force, contact, weight, lists, (key, True, True, False), slots
+                )
+                gather(bodies.radius, lists, slots, again)
+                _correct(new, bodies, dyn, terms, again)
+            velocities = new
+        elif dyn.friction:
+            tally = contact_step(motion, bodies, dyn, couplings, (contact, slope, weight), lists, key)
+            proposals, rejections, rejection = proposals + tally[0], rejections + tally[1], rejection + tally[2]
+        if not (np.isfinite(velocities[0]).all() and np.isfinite(velocities[1]).all()):
+            return NOT_FINITE, n, builds, proposals, rejections, rejection
+        if explicit:
+            vel[:] = new[0]
+            omega[:] = new[1]
         _half_kick(motion, bodies, dyn, terms[0])
-    return OK, steps, builds
+    return OK, steps, builds, proposals, rejections, rejection

@@ -35,8 +35,9 @@ class Bodies(NamedTuple):
 
 class Dynamics(NamedTuple):
     """Box lengths (Lz = 0 in 2-D), their inverses (0 beyond the dimension), bulk force, dimension and the parameters of one step: dt, kT,
-    solvent gamma and gamma_rot, active force F0, noise seed, the contact scheme (Calculus.index),
-    friction and contact-noise switches, neighbour-list skin and overlap limit (r / sigma_ik)."""
+    solvent gamma and gamma_rot, active force F0, noise seed, the calculus of the contact step (Calculus.index),
+    friction and contact-noise switches, the pairwise (else explicit) contact step, neighbour-list skin and
+    overlap limit (r / sigma_ik)."""
 
     box: np.ndarray
     inv_box: np.ndarray
@@ -51,6 +52,7 @@ class Dynamics(NamedTuple):
     scheme: int
     friction: bool
     noise: bool
+    pairwise: bool
     skin: float
     overlap_limit: float
 
@@ -66,5 +68,5 @@ class Couplings(NamedTuple):
 
 MOTION = types.NamedUniTuple(_M, 4, Motion)
 BODIES = types.NamedUniTuple(_V, 3, Bodies)
-DYNAMICS = types.NamedTuple([_V, _V, _V, _I, _F, _F, _F, _F, _F, _I, _I, _B, _B, _F, _F], Dynamics)
+DYNAMICS = types.NamedTuple([_V, _V, _V, _I, _F, _F, _F, _F, _F, _I, _I, _B, _B, _B, _F, _F], Dynamics)
 COUPLINGS = types.NamedTuple([_V, _V, _B], Couplings)

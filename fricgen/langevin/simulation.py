@@ -1,12 +1,13 @@
 """A Langevin simulation of frictional spheres: a configuration on a state, advanced in chunks.
 
-The contact law's kernels come from ``generated/`` through the loader; the contact is integrated by
-the scheme of the calculus its noise amplitude D was derived for (fricgen.langevin.config.Law).
+The contact law's kernels come from ``generated/`` through the loader; the contact is integrated in
+the calculus its noise amplitude D was derived for, pairwise or explicitly (fricgen.langevin.config.Law).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import NamedTuple
 
 import numpy as np
 
@@ -16,6 +17,21 @@ from . import integrator
 from .config import LangevinConfig
 from .records import Bodies, Couplings, Dynamics, Motion
 from .system import Particles, State
+
+
+class ContactTally(NamedTuple):
+    """The pairwise contact step's proposals, its rejections, and the sum of the proposals' rejection
+    probabilities 1 - min(1, alpha), since the simulation was created."""
+
+    proposals: int
+    rejections: int
+    rejection_sum: float
+
+    @property
+    def rejection_rate(self) -> float | None:
+        """The mean rejection probability of a proposal (the expected fraction rejected; less noisy than
+        rejections / proposals), None without proposals."""
+        return self.rejection_sum / self.proposals if self.proposals else None
 
 
 class Simulation:
@@ -31,6 +47,7 @@ class Simulation:
         self.potential = load_potential(config.potential)
         self.couplings = Couplings(np.array([config.epsilon, 1.0]), self.kernels.parameters(**params), self.kernels.has_weight)
         self.neighbor_builds = 0
+        self.tally = ContactTally(0, 0, 0.0)
         if state.dim == 2 and (state.position[:, 2].any() or config.bulk.vector[2]):
             raise ConfigError("bulk.force", "2-D states have z = 0 and no bulk force along z", "give [Fx, Fy]")
 
@@ -44,24 +61,27 @@ class Simulation:
         c, s, t = self.config, self.state, self.config.thermostat
         inv_box = np.array([1.0 / s.box[a] if a < s.dim else 0.0 for a in range(3)])
         return Dynamics(s.box, inv_box, np.array(c.bulk.vector, dtype=float), s.dim, t.dt, t.kT, t.gamma, t.gamma_rot, c.active.force,
-                        c.seed, c.law.integrator.index, c.law.friction, c.law.contact_noise, c.skin, c.overlap_limit)  # fmt: skip
+                        c.seed, c.law.integrator.index, c.law.friction, c.law.contact_noise, c.law.contact_scheme == "pairwise",
+                        c.skin, c.overlap_limit)  # fmt: skip
 
     def advance(self, steps: int) -> None:
         """Advance by ``steps`` compiled steps; raises SimulationError if the run blows up."""
         c, p, s = self.config, self.particles, self.state
-        status, done, builds = integrator.advance(
+        status, done, builds, *tally = integrator.advance(
             Motion(s.position, s.velocity, s.omega, s.orientation),
             Bodies(p.radius, p.inv_mass, p.inv_inertia),
             self.dynamics(),
             self.couplings,
             self.potential.force,
             self.contact,
+            self.kernels.friction_slope,
             self.kernels.module.weight if self.kernels.has_weight else no_weight,
             s.step,
             steps,
         )
         s.step += done
         self.neighbor_builds += builds
+        self.tally = ContactTally(*(total + part for total, part in zip(self.tally, tally)))
         dt = c.thermostat.dt
         if status == integrator.NOT_FINITE:
             raise SimulationError(

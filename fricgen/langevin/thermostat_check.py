@@ -4,7 +4,11 @@ Runs N spheres (2-D area fraction 0.6 or 3-D volume fraction 0.3 by default, the
 check) with WCA, the paper's solvent (gamma = 3 pi, gamma_R = pi; or none) and the law's friction
 with (or without) its noise, then fits T_eff of translation and rotation (block errors) and the KL
 divergence (F-41) of velocity and angular velocity components. Passed when both temperatures equal
-kT within ``z_limit`` standard errors and both KL divergences are below ``kl_limit``.
+kT within ``z_limit`` standard errors and both KL divergences are below ``kl_limit``. The pairwise
+contact step keeps kT at any dt and for any D; it reports its rejection rate instead, which vanishes
+like dt^1.5 for the right D (more slowly where f has a kink: dt^1.3 for coulomb_newton) and like
+dt^0.5 for a wrong one. A wrong D shows in the temperatures of the explicit kick
+(``contact_scheme = "explicit"``; docs/physics.md#the-pairwise-contact-step).
 """
 
 from __future__ import annotations
@@ -96,7 +100,7 @@ class PassiveCheck(Section):
 
 def passive_check(law: str, solvent: bool = True, **options) -> PassiveCheck:
     """A PassiveCheck from flat options: the fields of PassiveCheck, of Law (calculus, contact_noise,
-    parameters, scheme, force_scheme) and of Thermostat (kT, dt); ``solvent=False`` sets
+    parameters, scheme, force_scheme, contact_scheme) and of Thermostat (kT, dt); ``solvent=False`` sets
     gamma = gamma_R = 0 (the friction thermostat alone)."""
     sections = {Law: {"name": law}, Thermostat: {} if solvent else {"gamma": 0.0, "gamma_rot": 0.0}}
     for section, values in sections.items():
@@ -110,6 +114,7 @@ class CheckResult:
     law: str
     calculus: str
     scheme: str
+    contact_scheme: str
     dim: int
     contact_noise: bool
     T_trans: float
@@ -121,6 +126,7 @@ class CheckResult:
     passed: bool
     steps: int
     seconds: float
+    rejection_rate: float | None  # the pairwise contact step's mean rejection probability (None: explicit, no noise or no friction)
 
     def as_dict(self) -> dict:
         return asdict(self)
@@ -152,6 +158,7 @@ def passive_run(check: PassiveCheck, observers: Sequence[Callable[[Simulation], 
         check.law.name,
         check.law.calculus,
         simulation.scheme,
+        check.law.contact_scheme,
         dim,
         check.law.contact_noise,
         trans.mean,
@@ -163,6 +170,7 @@ def passive_run(check: PassiveCheck, observers: Sequence[Callable[[Simulation], 
         bool(passed),
         steps,
         time.perf_counter() - start,
+        simulation.tally.rejection_rate,
     )
     return result, sampler
 

@@ -109,7 +109,9 @@ def save_checkpoint(path: str | Path, simulation: Simulation) -> Path:
 def load_checkpoint(path: str | Path) -> Simulation:
     """A Simulation that continues exactly where :func:`save_checkpoint` left it."""
     with np.load(Path(path)) as data:
-        config = structure(LangevinConfig, json.loads(str(data["config"])), "checkpoint")
+        stored = json.loads(str(data["config"]))
+        stored["law"].setdefault("contact_scheme", "explicit")  # written before the pairwise step existed
+        config = structure(LangevinConfig, stored, "checkpoint")
         particles = Particles(data["radius"], data["mass"], data["inertia"], data["mobile"])
         state = State(
             data["position"].copy(),

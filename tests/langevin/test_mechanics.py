@@ -1,5 +1,6 @@
 """Deterministic mechanics, reproducibility and the engine's contracts."""
 
+import json
 import os
 import subprocess
 import sys
@@ -59,11 +60,12 @@ def test_collision_dissipates_and_conserves_momentum(law):
     np.testing.assert_allclose(sim.state.velocity.sum(axis=0), p0, atol=1e-12)
 
 
-def test_same_seed_bit_identical_for_one_and_two_threads():
-    script = textwrap.dedent("""
+@pytest.mark.parametrize("dim", [2, 3])
+def test_same_seed_bit_identical_for_one_and_two_threads(dim):
+    script = textwrap.dedent(f"""
         import hashlib, numpy as np
         from tests.langevin.helpers import passive, arrays
-        sim = passive(dim=2, n=100, calculus="stratonovich")
+        sim = passive(dim={dim}, n=100, calculus="stratonovich")
         sim.advance(300)
         print(hashlib.sha256(arrays(sim).tobytes()).hexdigest())
     """)
@@ -75,11 +77,12 @@ def test_same_seed_bit_identical_for_one_and_two_threads():
     assert len(hashes) == 1
 
 
-def test_independent_of_neighbour_lists_and_chunking():
+@pytest.mark.parametrize("contact_scheme", ["pairwise", "explicit"])
+def test_independent_of_neighbour_lists_and_chunking(contact_scheme):
     """Skin (list contents, rebuild times) and chunking do not change a single bit."""
-    a = passive(dim=3, n=125, skin=0.3)
+    a = passive(dim=3, n=125, skin=0.3, contact_scheme=contact_scheme)
     a.advance(400)
-    b = passive(dim=3, n=125, skin=0.8)
+    b = passive(dim=3, n=125, skin=0.8, contact_scheme=contact_scheme)
     for _ in range(8):
         b.advance(50)
     assert np.array_equal(arrays(a), arrays(b))
@@ -93,6 +96,16 @@ def test_checkpoint_restart_is_bit_identical(tmp_path):
     resumed = load_checkpoint(save_checkpoint(tmp_path / "run.npz", first))
     resumed.advance(180)
     assert resumed.state.step == 300 and np.array_equal(arrays(straight), arrays(resumed))
+
+
+def test_a_checkpoint_from_before_the_pairwise_step_resumes_the_explicit_kick(tmp_path):
+    path = save_checkpoint(tmp_path / "run.npz", passive(dim=2, n=64, contact_scheme="explicit"))
+    with np.load(path) as data:
+        saved = dict(data)
+    stored = json.loads(str(saved["config"]))
+    del stored["law"]["contact_scheme"]
+    np.savez(path, **{**saved, "config": json.dumps(stored)})
+    assert load_checkpoint(path).config.law.contact_scheme == "explicit"
 
 
 def test_gsd_trajectory_reads_back(tmp_path):

@@ -1,0 +1,285 @@
+"""The pairwise contact step: friction and its noise integrated pair by pair, Metropolis-adjusted.
+
+Friction and the frictional noise of a pair (i, k) act only on its contact mode, the relative
+tangential velocity u_perp (1 component in 2-D, 2 in 3-D). An impulse J on i (-J on k, torques R_i
+n x J and R_k n x J) changes u_perp by -mu J and no velocity component orthogonal to that mode in
+the mass metric, and at kT the mode is Gaussian with variance mu kT per component, independent of
+the rest. So the pairs in contact are updated one after another (Shardlow's splitting), each by a
+Metropolis-Hastings step of its mode with that Gaussian as target: the step leaves the
+Maxwell-Boltzmann distribution invariant exactly, at any dt (docs/physics.md#the-pairwise-contact-step).
+
+The proposal integrates the mode's SDE, du = a dt + mu sqrt(2 kT D) dW with the Itô-equivalent drift
+a = [-mu f + theta mu^2 kT D'] u_hat of the scheme's calculus (theta = 0, 1/2, 1); D' comes from the
+ODE of the calculus, (u D - f) / (nu kT) with nu = (1 - theta) mu, or (u f' - f) / u^2 for HK (D = f/u).
+A Gaussian (Euler–Maruyama) proposal would be rejected at a rate ~ dt^0.5 even for the right D: it
+misses the skewness that a noise amplitude varying with u gives the true step. So the mode, written
+as a complex number x = u_perp . (e1 + i e2) (real in 2-D), moves by the map y = x + (e^(g W) - 1)/g,
+g the conjugate of grad ln sqrt(D(|x|)), which makes the noise additive to first order (a local
+Lamperti transform, conformal in the 2-component mode), with W Gaussian: mean a (1 - e^(-lambda dt))
+/ lambda (less g s2 / 2, the map's own mean shift, where the mode has one component) and variance
+s2 = mu kT (1 - e^(-2 lambda dt)) per component, lambda = mu D (the Ornstein–Uhlenbeck step of the
+linear law, exact there, and stable for stiff contacts). For the right D the rejection rate then falls like dt^1.5 (dt^1 where f or D has a
+kink), for a wrong D like dt^0.5. Without contact noise there is no target to adjust to: the mode
+relaxes deterministically, u_perp <- e^(-mu (f/u) dt) u_perp (exact for the linear law, never
+reversing the sliding).
+
+Pairs of one colour (greedy edge colouring of the pairs in contact, taken in (i, k) order) share no
+particle and run in parallel; the colours run one after another. The noise of a pair is keyed on
+(seed, step, CONTACT, i, k): results are bit-identical for any thread count, neighbour-list skin or
+chunking.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from derive.calculus import Calculus
+
+from ..rng import normal_pair_at, uniform_at
+from .neighbors import minimum_image
+from .pairs import WCA_RANGE, cross
+
+#: theta of each scheme (Calculus.index): where the calculus evaluates D within a step.
+THETA = np.array([float(c.theta) for c in Calculus])
+#: Per pair in contact: unit normal n (from i to k), distance r, weight w, contact mobility mu.
+GEOMETRY = 6
+_ONE, _WORD = np.uint64(1), 64
+
+
+@numba.njit(parallel=True, cache=True)
+def find_contacts(pos, bodies, dyn, couplings, weight, lists):
+    """The pairs i < k within WCA reach (not both immobile), in (i, k) order: (pairs (M, 2), geometry (M, GEOMETRY))."""
+    radius, inv_mass, inv_inertia = bodies
+    start, neighbors = lists[0], lists[1]
+    box, inv_box, dims, size = dyn.box, dyn.inv_box, dyn.dims, pos.shape[0]
+    touching = np.zeros(neighbors.size, dtype=np.bool_)
+    first = np.zeros(size + 1, dtype=np.int64)
+    for i in numba.prange(size):
+        for slot in range(start[i], start[i + 1]):
+            k = neighbors[slot]
+            if k < i or (inv_mass[i] == 0.0 and inv_mass[k] == 0.0):
+                continue
+            r2 = 0.0
+            for a in range(dims):
+                d = minimum_image(pos[k, a] - pos[i, a], box[a], inv_box[a])
+                r2 += d * d
+            reach = WCA_RANGE * (radius[i] + radius[k])
+            if r2 < reach * reach:
+                touching[slot] = True
+                first[i + 1] += 1
+    for i in range(size):
+        first[i + 1] += first[i]
+    pairs, geometry = np.empty((first[size], 2), dtype=np.int64), np.zeros((first[size], GEOMETRY))
+    for i in numba.prange(size):
+        p = first[i]
+        for slot in range(start[i], start[i + 1]):
+            if not touching[slot]:
+                continue
+            k = neighbors[slot]
+            out = geometry[p]
+            for a in range(dims):
+                out[a] = minimum_image(pos[k, a] - pos[i, a], box[a], inv_box[a])
+            r = math.sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2])
+            sigma = radius[i] + radius[k]
+            out[0], out[1], out[2], out[3] = out[0] / r, out[1] / r, out[2] / r, r
+            out[4] = weight(r / sigma, couplings.law) / sigma if couplings.has_weight else 1.0
+            out[5] = inv_mass[i] + inv_mass[k] + radius[i] ** 2 * inv_inertia[i] + radius[k] ** 2 * inv_inertia[k]
+            pairs[p, 0], pairs[p, 1] = i, k
+            p += 1
+    return pairs, geometry
+
+
+@numba.njit(cache=True)
+def colour_classes(pairs, size):
+    """Greedy edge colouring in pair order: (order, first), the pairs of colour c being
+    order[first[c]:first[c + 1]], in pair order; no two pairs of a colour share a particle."""
+    degree = np.zeros(size, dtype=np.int64)
+    for p in range(pairs.shape[0]):
+        degree[pairs[p, 0]] += 1
+        degree[pairs[p, 1]] += 1
+    words = (2 * degree.max()) // _WORD + 1 if size else 1  # greedy needs at most 2 max(degree) - 1 colours
+    used = np.zeros((size, words), dtype=np.uint64)
+    colour = np.empty(pairs.shape[0], dtype=np.int64)
+    counts = np.zeros(words * _WORD + 1, dtype=np.int64)
+    for p in range(pairs.shape[0]):
+        i, k = pairs[p, 0], pairs[p, 1]
+        word = 0
+        while ~(used[i, word] | used[k, word]) == 0:
+            word += 1
+        free, bit = ~(used[i, word] | used[k, word]), 0
+        while ((free >> np.uint64(bit)) & _ONE) == 0:
+            bit += 1
+        used[i, word] |= _ONE << np.uint64(bit)
+        used[k, word] |= _ONE << np.uint64(bit)
+        colour[p] = word * _WORD + bit
+        counts[colour[p] + 1] += 1
+    colours = colour.max() + 1 if pairs.shape[0] else 0
+    first = np.cumsum(counts[: colours + 1])
+    order, filled = np.empty(pairs.shape[0], dtype=np.int64), first[:-1].copy()
+    for p in range(pairs.shape[0]):
+        order[filled[colour[p]]] = p
+        filled[colour[p]] += 1
+    return order, first
+
+
+@numba.njit(inline="always", cache=True)
+def _expm1(z, dims):
+    """e^z - 1 of a complex z without cancellation (z real in 2-D)."""
+    if dims == 2:
+        return complex(math.expm1(z.real), 0.0)
+    grow, half = math.expm1(z.real), math.sin(0.5 * z.imag)
+    return complex(grow * math.cos(z.imag) - 2.0 * half * half, (grow + 1.0) * math.sin(z.imag))
+
+
+@numba.njit(inline="always", cache=True)
+def _log1p(z, dims):
+    """The principal log(1 + z) of a complex z without cancellation (z real and > -1 in 2-D)."""
+    if dims == 2:
+        return complex(math.log1p(z.real), 0.0)
+    return complex(0.5 * math.log1p(z.real * (2.0 + z.real) + z.imag * z.imag), math.atan2(z.imag, 1.0 + z.real))
+
+
+@numba.njit(inline="always", cache=True)
+def _inverse(z):
+    """1 / z of a complex z != 0."""
+    scale = 1.0 / (z.real * z.real + z.imag * z.imag)
+    return complex(z.real * scale, -z.imag * scale)
+
+
+@numba.njit(inline="always", cache=True)
+def mode_step(x, w, r, mu, dyn, params, law):
+    """The proposal from the mode x = u_perp . (e1 + i e2) (module docstring): returns (f/u, m, s2, g)
+    with y = x + (e^(g W) - 1) / g, W = m + sqrt(s2) (xi1 + i xi2), g the conjugate of grad ln sqrt(D)."""
+    contact, slope, theta, kT, dt = law[0], law[1], THETA[dyn.scheme], dyn.kT, dyn.dt
+    u = math.sqrt(x.real * x.real + x.imag * x.imag)
+    ratio, root = contact(u, w, r, mu, kT, params)
+    amplitude = root * root
+    if theta == 1.0:  # D'/u with D = f/u
+        slope_over_u = (slope(u, w, r, params) - ratio) / (u * u) if u > 0.0 else 0.0
+    else:
+        slope_over_u = (amplitude - ratio) / ((1.0 - theta) * mu * kT)
+    rate = mu * amplitude
+    decay = math.expm1(-rate * dt)  # e^(-lambda dt) - 1
+    span = -decay / rate if rate > 0.0 else dt  # (1 - e^(-lambda dt)) / lambda
+    s2 = -mu * kT * decay * (2.0 + decay)  # mu kT (1 - e^(-2 lambda dt))
+    g = (0.5 * slope_over_u / amplitude if amplitude > 0.0 else 0.0) * x.conjugate()
+    m = (-mu * ratio + theta * mu * mu * kT * slope_over_u) * x * span
+    if dyn.dims == 2:  # one component: the map's mean shift g s2 / 2
+        m -= 0.5 * g * s2
+    return ratio, m, s2, g
+
+
+@numba.njit(inline="always", cache=True)
+def _log_proposal(xi, g_w, dims):
+    """log q(y|x) + (dims - 1) log(sqrt(s2)) + const for the standard normal xi and g W of the move."""
+    return -0.5 * (xi.real * xi.real + xi.imag * xi.imag) - (dims - 1) * g_w.real
+
+
+@numba.njit(inline="always", cache=True)
+def _tangents(nx, ny, nz, dims):
+    """Orthonormal tangents (e1, e2) of the contact plane; in 2-D e1 = z x n and e2 = 0."""
+    if dims == 2:
+        return (-ny, nx, 0.0), (0.0, 0.0, 0.0)
+    ax, ay = (1.0, 0.0) if abs(nx) < 0.9 else (0.0, 1.0)
+    along = ax * nx + ay * ny
+    tx, ty, tz = ax - along * nx, ay - along * ny, -along * nz
+    norm = math.sqrt(tx * tx + ty * ty + tz * tz)
+    tx, ty, tz = tx / norm, ty / norm, tz / norm
+    return (tx, ty, tz), cross(nx, ny, nz, tx, ty, tz)
+
+
+@numba.njit(inline="always", cache=True)
+def _propose(x, w, r, mu, dyn, params, law, key, pair):
+    """(y, 1 - min(1, alpha)) of the Metropolis–Hastings move of the mode from x; y = x if the move
+    leaves the map's principal strip (a proposal to stay) or D = 0."""
+    i, k, dims, kT = pair[0], pair[1], dyn.dims, dyn.kT
+    _, m, s2, g = mode_step(x, w, r, mu, dyn, params, law)
+    if not s2 > 0.0:
+        return x, 0.0
+    z0, z1 = normal_pair_at(key, i, k, 0)
+    xi = complex(z0, z1 if dims == 3 else 0.0)
+    move = m + math.sqrt(s2) * xi
+    g_w = g * move
+    if abs(g_w.imag) >= math.pi:
+        return x, 1.0
+    y = x + (_expm1(g_w, dims) * _inverse(g) if g != 0.0 else move)
+    _, m_back, s2_back, g_back = mode_step(y, w, r, mu, dyn, params, law)
+    z = g_back * (x - y)
+    if not (s2_back > 0.0 and (dims == 3 or 1.0 + z.real > 0.0)):  # one component: x has no preimage from y
+        return x, 1.0
+    back = _log1p(z, dims) * _inverse(g_back) if g_back != 0.0 else x - y
+    log_alpha = (x.real * x.real + x.imag * x.imag - y.real * y.real - y.imag * y.imag) / (2.0 * mu * kT)
+    log_alpha += _log_proposal((back - m_back) * (1.0 / math.sqrt(s2_back)), g_back * back, dims) - _log_proposal(xi, g_w, dims)
+    log_alpha += 0.5 * (dims - 1) * math.log(s2 / s2_back)
+    if log_alpha >= 0.0:
+        return y, 0.0
+    alpha = math.exp(log_alpha)
+    if not alpha == alpha:  # NaN
+        return x, 1.0
+    return (y if uniform_at(key, i, k, 1) < alpha else x), 1.0 - alpha
+
+
+@numba.njit(inline="always", cache=True)
+def update_pair(motion, bodies, dyn, params, law, key, pair, geometry):
+    """One pair's step (module docstring) on motion.velocity and motion.omega in place; returns
+    (the proposal's rejection probability 1 - min(1, alpha), rejected)."""
+    vel, omega, radius = motion.velocity, motion.omega, bodies.radius
+    i, k = pair[0], pair[1]
+    nx, ny, nz, r, w, mu = geometry[0], geometry[1], geometry[2], geometry[3], geometry[4], geometry[5]
+    ri, rk = radius[i], radius[k]
+    # u_perp = P (v_k - v_i) - (R_i w_i + R_k w_k) x n   (F-4), as x = u_perp . (e1 + i e2): P drops out
+    wx, wy, wz = ri * omega[i, 0] + rk * omega[k, 0], ri * omega[i, 1] + rk * omega[k, 1], ri * omega[i, 2] + rk * omega[k, 2]
+    cx, cy, cz = cross(wx, wy, wz, nx, ny, nz)
+    ux, uy, uz = vel[k, 0] - vel[i, 0] - cx, vel[k, 1] - vel[i, 1] - cy, vel[k, 2] - vel[i, 2] - cz
+    (ax, ay, az), (bx, by, bz) = _tangents(nx, ny, nz, dyn.dims)
+    x = complex(ux * ax + uy * ay + uz * az, ux * bx + uy * by + uz * bz)
+    rejection, rejected = 0.0, False
+    if dyn.noise:
+        y, rejection = _propose(x, w, r, mu, dyn, params, law, key, pair)
+        rejected = y == x and rejection > 0.0
+    else:
+        y = x * math.exp(-mu * mode_step(x, w, r, mu, dyn, params, law)[0] * dyn.dt)
+    if y == x:
+        return rejection, rejected
+    jp, jq = (x.real - y.real) / mu, (x.imag - y.imag) / mu  # impulse on i: u_perp -> u_perp - mu J
+    jx, jy, jz = jp * ax + jq * bx, jp * ay + jq * by, jp * az + jq * bz
+    tx, ty, tz = cross(nx, ny, nz, jx, jy, jz)
+    for particle, sign, arm in ((i, 1.0, ri), (k, -1.0, rk)):
+        scale, turn = sign * bodies.inv_mass[particle], arm * bodies.inv_inertia[particle]
+        vel[particle, 0] += scale * jx
+        vel[particle, 1] += scale * jy
+        vel[particle, 2] += scale * jz
+        omega[particle, 0] += turn * tx
+        omega[particle, 1] += turn * ty
+        omega[particle, 2] += turn * tz
+    return rejection, rejected
+
+
+@numba.njit(parallel=True, cache=True)
+def _sweep(motion, bodies, dyn, params, law, key, pairs, geometry, classes):
+    """update_pair for every pair, colour after colour, the pairs of a colour in parallel; returns each
+    pair's (rejection probability, rejected)."""
+    order, first = classes
+    rejection, rejected = np.zeros(pairs.shape[0]), np.zeros(pairs.shape[0], dtype=np.bool_)
+    for colour in range(first.size - 1):
+        for j in numba.prange(first[colour], first[colour + 1]):
+            p = order[j]
+            rejection[p], rejected[p] = update_pair(motion, bodies, dyn, params, law, key, pairs[p], geometry[p])
+    return rejection, rejected
+
+
+@numba.njit(cache=True)
+def contact_step(motion, bodies, dyn, couplings, law, lists, key):
+    """The pairwise step of all pairs in contact; ``law`` = (contact, slope, weight) kernels, ``key``
+    the step's CONTACT stream key. Returns (proposals, rejections, sum of rejection probabilities)."""
+    pairs, geometry = find_contacts(motion.position, bodies, dyn, couplings, law[2], lists)
+    classes = colour_classes(pairs, motion.position.shape[0])
+    rejection, rejected = _sweep(motion, bodies, dyn, couplings.law, law, key, pairs, geometry, classes)
+    total, count = 0.0, 0
+    for p in range(pairs.shape[0]):  # in pair order: the same sum on any number of threads
+        total += rejection[p]
+        count += rejected[p]
+    return pairs.shape[0] if dyn.noise else 0, count, total
