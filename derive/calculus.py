@@ -33,3 +33,19 @@ class Calculus(StrEnum):
 
 #: The names of the calculi, in order (a law's default list).
 CALCULI: tuple[str, ...] = tuple(c.value for c in Calculus)
+
+
+def velocity_verlet_refusal(calculus: str) -> str:
+    """Why a pair force of velocity Verlet (LAMMPS) cannot integrate the noise of ``calculus``; "" for Itô.
+
+    Velocity Verlet evaluates the pair force once per step, at the half-kicked start-of-step
+    velocities: Euler–Maruyama, the Itô scheme. Stratonovich (Heun) and HK (end point) need a second
+    evaluation with the same normals."""
+    if calculus == Calculus.ITO:
+        return ""
+    return (
+        f"calculus {calculus!r}: the LAMMPS pair style integrates the contact noise with velocity Verlet, which evaluates the "
+        "pair force once per step at the start-of-step (half-kicked) velocities: that is Euler–Maruyama, consistent with the "
+        "Itô amplitude only; Stratonovich (Heun) and HK (end point) need a second force evaluation with the same normals. "
+        "Use --calculus ito (or fricgen's own engine for the other calculi)"
+    )

@@ -20,6 +20,7 @@ from derive.errors import DeriveError
 from ..errors import FricgenError
 from . import laws
 from .arguments import Parser, UsageError, join_negative_values, named_by_flags
+from .lammps import add_lammps_command
 from .outputs import dumps
 
 
@@ -69,6 +70,7 @@ CHECK_FLAGS = {
     "thermostat.dt": "--dt",
     "thermostat.kT": "--kT",
     "law.calculus": "--calculus",
+    "law.contact_scheme": "--contact-scheme",
 }
 
 
@@ -78,7 +80,8 @@ def _thermostat_check(args: argparse.Namespace) -> int:
 
     laws.check_law_names([args.law])
     laws.check_calculus(args.law, args.calculus)
-    options = {"dim": args.dim, "calculus": args.calculus, "n": args.n, "phi": args.phi, "dt": args.dt, "kT": args.kT}
+    options = {"dim": args.dim, "calculus": args.calculus, "contact_scheme": args.contact_scheme, "n": args.n, "phi": args.phi}
+    options |= {"dt": args.dt, "kT": args.kT}
     with named_by_flags(CHECK_FLAGS):
         check = passive_check(
             args.law,
@@ -98,6 +101,7 @@ def _thermostat_check(args: argparse.Namespace) -> int:
             f"{r.law} ({r.calculus}, {r.dim}-D, contact noise {'on' if r.contact_noise else 'off'}): "
             f"T_trans = {r.T_trans:.4f} +- {r.T_trans_err:.4f}, T_rot = {r.T_rot:.4f} +- {r.T_rot_err:.4f}, "
             f"KL = {r.kl_trans:.1e} / {r.kl_rot:.1e}: {'passed' if r.passed else 'FAILED'} ({r.seconds:.1f} s)"
+            + ("" if r.rejection_rate is None else f"; {r.contact_scheme} contact step, rejection rate {r.rejection_rate:.2e}")
         )
     return 0 if result.passed else 1
 
@@ -207,7 +211,7 @@ def _add_rod_flags(command: argparse.ArgumentParser) -> None:
 
 
 def parser() -> argparse.ArgumentParser:
-    from ..langevin.config import Thermostat
+    from ..langevin.config import CONTACT_SCHEMES, Thermostat
 
     main = Parser(prog="fricgen", description=__doc__)
     commands = main.add_subparsers(dest="command", required=True)
@@ -246,6 +250,12 @@ def parser() -> argparse.ArgumentParser:
     check.add_argument("--calculus", choices=CALCULI, default="ito")
     check.add_argument("--no-contact-noise", action="store_true", help="drop the frictional noise (the inconsistent model)")
     check.add_argument("--no-solvent", action="store_true", help="friction thermostat alone (gamma = gamma_R = 0)")
+    check.add_argument(
+        "--contact-scheme",
+        choices=CONTACT_SCHEMES,
+        default="pairwise",
+        help="pairwise: Metropolis-adjusted, kT at any dt, reports its rejection rate (default); explicit: the kick where a wrong D shows",
+    )
     check.add_argument("--n", type=int, help="particles (default 256 in 2-D, 216 in 3-D)")
     check.add_argument("--phi", type=float, help="packing fraction (default 0.6 in 2-D, 0.3 in 3-D)")
     check.add_argument("--dt", type=float, default=Thermostat.dt, help=f"time step (default {Thermostat.dt})")
@@ -280,6 +290,7 @@ def parser() -> argparse.ArgumentParser:
     bcd.add_argument("--out", default="fricgen-bcd", metavar="DIR", help="output folder (default fricgen-bcd)")
     bcd.add_argument("--json", action="store_true", help="print the summary as JSON")
     bcd.set_defaults(run=_bcd)
+    add_lammps_command(commands)
     return main
 
 

