@@ -7,7 +7,8 @@ dt is the splitting B A O A C B (docs/physics.md#integrators-that-match-the-calc
 - B: v += (dt/2) F/m with F = -dU/dr (WCA by default) + F0 e1 (active) + F_bulk;
 - A: x += v dt/2 and the orientation turns by omega dt/2 (q <- exp(omega dt/4) q, lab frame);
 - O: solvent, exact Ornstein–Uhlenbeck v <- c v + sqrt(kT (1 - c^2)/m) xi, c = exp(-gamma dt/m)
-  (gamma_R, I for omega): no time-step bias of the solvent part;
+  (gamma_R, I for omega): no time-step bias of the solvent part; B A O A is one pass over the
+  particles (fricgen.langevin.single_particle), the forces another (fricgen.langevin.forces);
 - C: the contact, friction plus its noise, by one of two schemes (docs/physics.md#the-pairwise-contact-step):
   pairwise (the default; fricgen.langevin.contact_step): the pairs in contact one after another, each
   a Metropolis-adjusted update of its contact mode that keeps Maxwell–Boltzmann exact at any dt;
@@ -24,8 +25,6 @@ engine is compiled once for every law and cached on disk.
 
 from __future__ import annotations
 
-import math
-
 import numba
 import numpy as np
 from numba import types
@@ -33,51 +32,16 @@ from numba import types
 from derive.calculus import Calculus
 
 from ..kernels import CONTACT_KERNEL, FRICTION_KERNEL, SCALAR_KERNEL
-from ..rng import CONTACT, SOLVENT, normal_pair_at, stream_key
+from ..rng import CONTACT, SOLVENT, stream_key
 from .contact_step import contact_step
-from .neighbors import build_neighbors, minimum_image
+from .forces import conservative_forces
+from .neighbors import build_neighbors
 from .pairs import PAIR_FIELDS, TERMS, WCA_RANGE, gather, pair_slots
 from .records import BODIES, COUPLINGS, DYNAMICS, MOTION
+from .single_particle import half_kick, kick_drift_solvent, solvent_coefficients
 
 OK, NOT_FINITE, OVERLAP = 0, 1, 2  # status of advance()
 _ITO, _STRATONOVICH = Calculus.ITO.index, Calculus.STRATONOVICH.index
-
-
-@numba.njit(inline="always", cache=True)
-def _body_x(q):
-    """e1 = R(q) (1, 0, 0) for a unit quaternion q = (s, x, y, z)."""
-    s, x, y, z = q[0], q[1], q[2], q[3]
-    return 1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + s * z), 2.0 * (x * z - s * y)
-
-
-@numba.njit(inline="always", cache=True)
-def _rotate(q, wx, wy, wz, dt):
-    """q <- exp(omega dt/2) q: exact rotation by the lab-frame angle omega dt."""
-    rate = math.sqrt(wx * wx + wy * wy + wz * wz)
-    if rate == 0.0:
-        return
-    c, s = math.cos(0.5 * rate * dt), math.sin(0.5 * rate * dt) / rate
-    a0, a1, a2, a3 = c, s * wx, s * wy, s * wz
-    b0, b1, b2, b3 = q[0], q[1], q[2], q[3]
-    q0 = a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3
-    q1 = a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2
-    q2 = a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1
-    q3 = a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0
-    norm = math.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
-    q[0], q[1], q[2], q[3] = q0 / norm, q1 / norm, q2 / norm, q3 / norm
-
-
-@numba.njit(parallel=True, cache=True)
-def _half_kick(motion, bodies, dyn, force):
-    """v += (dt/2) (F_conservative + F0 e1 + F_bulk) / m."""
-    vel, quat, inv_mass, active, bulk = motion.velocity, motion.orientation, bodies.inv_mass, dyn.active, dyn.bulk
-    for i in numba.prange(vel.shape[0]):
-        e0, e1, e2 = _body_x(quat[i]) if active != 0.0 else (0.0, 0.0, 0.0)
-        scale = 0.5 * dyn.dt * inv_mass[i]
-        vel[i, 0] += scale * (force[i, 0] + active * e0 + bulk[0])
-        vel[i, 1] += scale * (force[i, 1] + active * e1 + bulk[1])
-        if dyn.dims == 3:
-            vel[i, 2] += scale * (force[i, 2] + active * e2 + bulk[2])
 
 
 @numba.njit(parallel=True, cache=True)
@@ -109,55 +73,6 @@ def _correct(new, bodies, dyn, terms, again):
             wnew[i, a] += bodies.inv_inertia[i] * dw
 
 
-@numba.njit(parallel=True, cache=True)
-def _solvent(motion, bodies, dyn, key):
-    """Exact Ornstein–Uhlenbeck update of v and omega (mobile particles), noise keyed on (key, i)."""
-    vel, omega, inv_mass, inv_inertia, dt, kT = motion.velocity, motion.omega, bodies.inv_mass, bodies.inv_inertia, dyn.dt, dyn.kT
-    for i in numba.prange(vel.shape[0]):
-        if inv_mass[i] == 0.0:
-            continue
-        c = math.exp(-dyn.gamma * inv_mass[i] * dt)
-        spread = math.sqrt(kT * inv_mass[i] * (1.0 - c * c))
-        cr = math.exp(-dyn.gamma_rot * inv_inertia[i] * dt)
-        spread_rot = math.sqrt(kT * inv_inertia[i] * (1.0 - cr * cr))
-        z0, z1 = normal_pair_at(key, i, 0, 0)
-        z2, z3 = normal_pair_at(key, i, 0, 1)
-        vel[i, 0] = c * vel[i, 0] + spread * z0
-        vel[i, 1] = c * vel[i, 1] + spread * z1
-        omega[i, 2] = cr * omega[i, 2] + spread_rot * z3
-        if dyn.dims == 3:
-            z4, z5 = normal_pair_at(key, i, 0, 2)
-            vel[i, 2] = c * vel[i, 2] + spread * z2
-            omega[i, 0] = cr * omega[i, 0] + spread_rot * z4
-            omega[i, 1] = cr * omega[i, 1] + spread_rot * z5
-
-
-@numba.njit(parallel=True, cache=True)
-def _drift(motion, bodies, dyn, h):
-    """x += v h (wrapped into the box), q <- exp(omega h/2) q (mobile particles)."""
-    pos, vel, omega, box = motion.position, motion.velocity, motion.omega, dyn.box
-    for i in numba.prange(pos.shape[0]):
-        if bodies.inv_mass[i] == 0.0:
-            continue
-        for a in range(dyn.dims):
-            x = pos[i, a] + vel[i, a] * h
-            pos[i, a] = x - box[a] * math.floor(x / box[a])
-        _rotate(motion.orientation[i], omega[i, 0], omega[i, 1], omega[i, 2], h)
-
-
-@numba.njit(cache=True)
-def _moved(pos, reference, dyn):
-    """Largest displacement since the last neighbour-list build."""
-    largest = 0.0
-    for i in range(pos.shape[0]):
-        d2 = 0.0
-        for a in range(dyn.dims):
-            d = minimum_image(pos[i, a] - reference[i, a], dyn.box[a], dyn.inv_box[a])
-            d2 += d * d
-        largest = max(largest, d2)
-    return math.sqrt(largest)
-
-
 #: advance(motion, bodies, dynamics, couplings, potential force, contact, friction slope, weight, first step, steps)
 #: -> (status, steps, neighbour builds, contact proposals, rejections, sum of rejection probabilities)
 _ADVANCE = types.Tuple([types.int64] * 5 + [types.float64])(
@@ -181,30 +96,29 @@ def advance(motion, bodies, dyn, couplings, pot_force, contact, slope, weight, f
     size, dims, skin = pos.shape[0], dyn.dims, dyn.skin
     cutoff = WCA_RANGE * 2.0 * bodies.radius.max() + skin
     lists = build_neighbors(pos, dyn.box, dims, cutoff)
-    slots = np.zeros((lists[1].size, PAIR_FIELDS))
-    reference = pos.copy()
+    reference, solvent = pos.copy(), solvent_coefficients(bodies, dyn)
     builds, proposals, rejections, rejection = 1, 0, 0, 0.0
     explicit = dyn.friction and not dyn.pairwise
-    terms, again = np.zeros((TERMS if explicit else 1, size, 3)), np.zeros((TERMS, size, 3))  # the pairwise step needs the force alone
+    slots = np.zeros((lists[1].size if explicit else 0, PAIR_FIELDS))
+    terms, again = np.zeros((TERMS if explicit else 1, size, 3)), np.zeros((TERMS if explicit else 0, size, 3))
+    force = terms[0]  # the conservative force (the explicit kick's pair pass fills it with the contact terms)
     new = (np.empty((size, 3)), np.empty((size, 3)))
-    for n in range(-1, steps):
-        step = first_step + max(n, 0)
-        if n >= 0:
-            _half_kick(motion, bodies, dyn, terms[0])
-            _drift(motion, bodies, dyn, 0.5 * dyn.dt)
-            _solvent(motion, bodies, dyn, stream_key(dyn.seed, step, SOLVENT))
-            _drift(motion, bodies, dyn, 0.5 * dyn.dt)
-            if _moved(pos, reference, dyn) > 0.5 * skin:
-                lists = build_neighbors(pos, dyn.box, dims, cutoff)
-                slots = np.zeros((lists[1].size, PAIR_FIELDS))
-                reference[:] = pos
-                builds += 1
+    conservative_forces(pos, bodies, dyn, couplings, pot_force, lists, force)  # at the initial positions
+    for step in range(first_step, first_step + steps):
+        n = step - first_step
+        if kick_drift_solvent(motion, bodies, dyn, force, solvent, stream_key(dyn.seed, step, SOLVENT), reference) > 0.5 * skin:
+            lists = build_neighbors(pos, dyn.box, dims, cutoff)
+            slots = np.zeros((lists[1].size if explicit else 0, PAIR_FIELDS))
+            reference[:] = pos
+            builds += 1
         key = stream_key(dyn.seed, step, CONTACT)
-        switches = (key, explicit and n >= 0, dyn.noise, True)
-        closest = pair_slots((pos, vel, omega), bodies, dyn, couplings, pot_force, contact, weight, lists, switches, slots)
-        gather(bodies.radius, lists, slots, terms)
-        if n < 0:  # forces at the initial positions for the first half kick
-            continue
+        if explicit:
+            closest = pair_slots(
+                (pos, vel, omega), bodies, dyn, couplings, pot_force, contact, weight, lists, (key, True, dyn.noise, True), slots
+            )
+            gather(bodies.radius, lists, slots, terms)
+        else:
+            closest = conservative_forces(pos, bodies, dyn, couplings, pot_force, lists, force)
         if closest < dyn.overlap_limit:
             return OVERLAP, n, builds, proposals, rejections, rejection
         velocities = (vel, omega)
@@ -225,5 +139,5 @@ def advance(motion, bodies, dyn, couplings, pot_force, contact, slope, weight, f
         if explicit:
             vel[:] = new[0]
             omega[:] = new[1]
-        _half_kick(motion, bodies, dyn, terms[0])
+        half_kick(motion, bodies, dyn, force)
     return OK, steps, builds, proposals, rejections, rejection

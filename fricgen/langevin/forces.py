@@ -1,0 +1,90 @@
+"""Conservative pair forces F_i = sum_k -U'(r_ik) r_hat_ik, in one of two bit-identical ways.
+
+- On one thread, each pair i < k once: F_ik is added to i and -F_ik to k (half the work).
+- On several threads, each particle sums its own neighbour list, computing F_ik itself (each pair
+  twice, no shared writes).
+
+Both add the same numbers in the same order: a particle's contributions in the sorted order of its
+neighbour list (partners k < i first, whose pairs the serial loop meets earlier), starting from 0;
+and k computes -F_ik exactly, since the minimum image is exactly antisymmetric. So trajectories do
+not depend on the thread count, and the total force is exactly zero.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from .neighbors import minimum_image
+from .pairs import WCA_RANGE
+
+
+@numba.njit(inline="always", cache=True)
+def _pair_force(pos, radius, dyn, i, k, pot_force, params):
+    """(F_x, F_y, F_z, r / sigma_ik) on i from k, F = 0 beyond the potential's range (r / sigma = inf)."""
+    dx = minimum_image(pos[k, 0] - pos[i, 0], dyn.box[0], dyn.inv_box[0])
+    dy = minimum_image(pos[k, 1] - pos[i, 1], dyn.box[1], dyn.inv_box[1])
+    dz = minimum_image(pos[k, 2] - pos[i, 2], dyn.box[2], dyn.inv_box[2]) if dyn.dims == 3 else 0.0
+    r2 = dx * dx + dy * dy + dz * dz
+    sigma = radius[i] + radius[k]
+    reach = WCA_RANGE * sigma
+    if r2 >= reach * reach:
+        return 0.0, 0.0, 0.0, np.inf
+    r = math.sqrt(r2)
+    magnitude = pot_force(r / sigma, params) / sigma  # -dU/dr, scaled to sigma_ik
+    return -magnitude * (dx / r), -magnitude * (dy / r), -magnitude * (dz / r), r / sigma
+
+
+@numba.njit(cache=True)
+def _each_pair_once(pos, bodies, dyn, pot_force, params, lists, force):
+    start, neighbors = lists[0], lists[1]
+    force[:] = 0.0
+    closest = np.inf
+    for i in range(pos.shape[0]):
+        for slot in range(start[i], start[i + 1]):
+            k = neighbors[slot]
+            if k < i or (bodies.inv_mass[i] == 0.0 and bodies.inv_mass[k] == 0.0):
+                continue
+            fx, fy, fz, ratio = _pair_force(pos, bodies.radius, dyn, i, k, pot_force, params)
+            if ratio == np.inf:
+                continue
+            closest = min(closest, ratio)
+            force[i, 0] += fx
+            force[i, 1] += fy
+            force[i, 2] += fz
+            force[k, 0] += -fx
+            force[k, 1] += -fy
+            force[k, 2] += -fz
+    return closest
+
+
+@numba.njit(parallel=True, cache=True)
+def _each_particle(pos, bodies, dyn, pot_force, params, lists, force):
+    start, neighbors = lists[0], lists[1]
+    closest = np.full(pos.shape[0], np.inf)
+    for i in numba.prange(pos.shape[0]):
+        fx, fy, fz = 0.0, 0.0, 0.0
+        for slot in range(start[i], start[i + 1]):
+            k = neighbors[slot]
+            if bodies.inv_mass[i] == 0.0 and bodies.inv_mass[k] == 0.0:
+                continue
+            gx, gy, gz, ratio = _pair_force(pos, bodies.radius, dyn, i, k, pot_force, params)
+            if ratio == np.inf:
+                continue
+            closest[i] = min(closest[i], ratio)
+            fx += gx
+            fy += gy
+            fz += gz
+        force[i, 0], force[i, 1], force[i, 2] = fx, fy, fz
+    return closest.min() if pos.shape[0] else np.inf
+
+
+@numba.njit(cache=True)
+def conservative_forces(pos, bodies, dyn, couplings, pot_force, lists, force):
+    """force[i] = conservative force on i (pairs within the potential's range WCA_RANGE sigma_ik);
+    returns the smallest r / sigma_ik of those pairs. ``lists`` = (start, neighbors, reverse)."""
+    if numba.get_num_threads() == 1:
+        return _each_pair_once(pos, bodies, dyn, pot_force, couplings.potential, lists, force)
+    return _each_particle(pos, bodies, dyn, pot_force, couplings.potential, lists, force)
