@@ -85,6 +85,6 @@ def _each_particle(pos, bodies, dyn, pot_force, params, lists, force):
 def conservative_forces(pos, bodies, dyn, couplings, pot_force, lists, force):
     """force[i] = conservative force on i (pairs within the potential's range WCA_RANGE sigma_ik);
     returns the smallest r / sigma_ik of those pairs. ``lists`` = (start, neighbors, reverse)."""
-    if numba.get_num_threads() == 1:
+    if dyn.threads == 1:
         return _each_pair_once(pos, bodies, dyn, pot_force, couplings.potential, lists, force)
     return _each_particle(pos, bodies, dyn, pot_force, couplings.potential, lists, force)

@@ -37,7 +37,8 @@ class Dynamics(NamedTuple):
     """Box lengths (Lz = 0 in 2-D), their inverses (0 beyond the dimension), bulk force, dimension and the parameters of one step: dt, kT,
     solvent gamma and gamma_rot, active force F0, noise seed, the calculus of the contact step (Calculus.index),
     friction and contact-noise switches, the pairwise (else explicit) contact step, neighbour-list skin and
-    overlap limit (r / sigma_ik)."""
+    overlap limit (r / sigma_ik), and the number of threads numba runs this call on (set from Python:
+    numba.get_num_threads inside compiled code would keep the engine out of Numba's disk cache)."""
 
     box: np.ndarray
     inv_box: np.ndarray
@@ -55,6 +56,7 @@ class Dynamics(NamedTuple):
     pairwise: bool
     skin: float
     overlap_limit: float
+    threads: int
 
 
 class Couplings(NamedTuple):
@@ -68,5 +70,5 @@ class Couplings(NamedTuple):
 
 MOTION = types.NamedUniTuple(_M, 4, Motion)
 BODIES = types.NamedUniTuple(_V, 3, Bodies)
-DYNAMICS = types.NamedTuple([_V, _V, _V, _I, _F, _F, _F, _F, _F, _I, _I, _B, _B, _B, _F, _F], Dynamics)
+DYNAMICS = types.NamedTuple([_V, _V, _V, _I, _F, _F, _F, _F, _F, _I, _I, _B, _B, _B, _F, _F, _I], Dynamics)
 COUPLINGS = types.NamedTuple([_V, _V, _B], Couplings)

@@ -71,7 +71,7 @@ class Simulation:
         inv_box = np.array([1.0 / s.box[a] if a < s.dim else 0.0 for a in range(3)])
         return Dynamics(s.box, inv_box, np.array(c.bulk.vector, dtype=float), s.dim, t.dt, t.kT, t.gamma, t.gamma_rot, c.active.force,
                         c.seed, c.law.integrator.index, c.law.friction, c.law.contact_noise, c.law.contact_scheme == "pairwise",
-                        c.skin, c.overlap_limit)  # fmt: skip
+                        c.skin, c.overlap_limit, numba.get_num_threads())  # fmt: skip
 
     def advance(self, steps: int) -> None:
         """Advance by ``steps`` compiled steps; raises SimulationError if the run blows up."""

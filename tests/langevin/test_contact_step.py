@@ -43,7 +43,7 @@ def _pair_system(dims, noise, law="coulomb_newton", calculus="ito"):
     mu = 1 / MASS[0] + 1 / MASS[2] + RADIUS[0] ** 2 / INERTIA[0] + RADIUS[2] ** 2 / INERTIA[2]
     box = np.array([10.0, 10.0, 10.0 if dims == 3 else 0.0])
     dyn = Dynamics(box, np.where(box > 0, 1 / np.where(box > 0, box, 1), 0.0), np.zeros(3), dims, 0.01, 1.0, 0.0, 0.0, 0.0, 1,
-                   ["ito", "stratonovich", "hk"].index(calculus), True, noise, True, 0.3, 0.6)  # fmt: skip
+                   ["ito", "stratonovich", "hk"].index(calculus), True, noise, True, 0.3, 0.6, 1)  # fmt: skip
     law_kernels = (kernels.contact(calculus), kernels.friction_slope, kernels.weight)
     return motion, Bodies(RADIUS, 1 / MASS, 1 / INERTIA), dyn, params, law_kernels, np.array([*n, r, w, mu])
 

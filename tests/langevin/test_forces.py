@@ -20,7 +20,7 @@ def test_each_pair_once_and_each_particle_agree_bit_for_bit(dim):
     state.position[:, :dim] %= state.box[:dim]
     bodies = Bodies(particles.radius, particles.inv_mass, particles.inv_inertia)
     inv_box = np.array([1 / state.box[a] if a < dim else 0.0 for a in range(3)])
-    dyn = Dynamics(state.box, inv_box, np.zeros(3), dim, 1e-3, 1.0, 1.0, 1.0, 0.0, 1, 0, False, False, True, 0.3, 0.5)
+    dyn = Dynamics(state.box, inv_box, np.zeros(3), dim, 1e-3, 1.0, 1.0, 1.0, 0.0, 1, 0, False, False, True, 0.3, 0.5, 2)
     wca = load_potential("wca")
     couplings = Couplings(np.array([1.0, 1.0]), np.zeros(1), False)
     lists = build_neighbors(state.position, state.box, dim, 2 ** (1 / 6) + 0.3)
