@@ -105,15 +105,14 @@ def pair_slots(coordinates, bodies, dyn, couplings, pot_force, contact, weight, 
 
 @numba.njit(parallel=True, cache=True)
 def gather(radius, lists, slots, terms):
-    """terms[:, i] = sums over i's pairs in the sorted order of its list (-F and R_k torques for k > i);
-    only the first terms.shape[0] of the TERMS (the force alone: 1)."""
+    """terms[:, i] = sums over i's pairs in the sorted order of its list (-F and R_k torques for k > i)."""
     start, neighbors, reverse = lists
     for i in numba.prange(radius.size):
         terms[:, i, :] = 0.0
         for slot in range(start[i], start[i + 1]):
             source, sign = (slot, 1.0) if neighbors[slot] > i else (reverse[slot], -1.0)
             values = slots[source]
-            for j in range(terms.shape[0]):
+            for j in range(TERMS):
                 scale = radius[i] if j == 2 or j == 4 else sign  # torques: R_i r_hat x F for both partners
                 for a in range(3):
                     terms[j, i, a] += scale * values[3 * j + a]
