@@ -125,6 +125,13 @@ def _run(args: argparse.Namespace) -> int:
     return execute(plan(args.config, args.set, args.steps, args.out, args.resume, args.law_folders), args.json)
 
 
+def _sweep(args: argparse.Namespace) -> int:
+    """fricgen sweep SWEEP [--scheduler ADDRESS] [--workers N] [--out DIR] [--laws DIR] [--json]."""
+    from .sweep import SweepRequest, run_sweep
+
+    return run_sweep(SweepRequest(args.sweep, args.out, args.scheduler, args.workers, tuple(args.law_folders)), args.json)
+
+
 def _bcd(args: argparse.Namespace) -> int:
     """fricgen bcd ...: hard or sticky rods by BCD against the exact theory; CSV, PNG, JSON summary."""
     from pathlib import Path
@@ -281,6 +288,15 @@ def parser() -> argparse.ArgumentParser:
     run.add_argument("--json", action="store_true", help="print the summary as JSON")
     laws.add_laws_flag(run)
     run.set_defaults(run=_run)
+
+    sweep = commands.add_parser("sweep", help="a grid of runs over a base configuration, as Dask tasks (a local cluster or --scheduler)")
+    sweep.add_argument("sweep", metavar="SWEEP", help="a sweep TOML file (docs/sweeps.md) or the name of a bundled sweep: mips")
+    sweep.add_argument("--scheduler", metavar="ADDRESS", help="a running Dask scheduler, e.g. tcp://host:8786 (default: a local cluster)")
+    sweep.add_argument("--workers", type=int, metavar="N", help="worker processes of the local cluster (default: one per CPU it may use)")
+    sweep.add_argument("--out", metavar="DIR", help="output folder (default fricgen-sweep-<sweep name>)")
+    sweep.add_argument("--json", action="store_true", help="print the results as JSON")
+    laws.add_laws_flag(sweep)
+    sweep.set_defaults(run=_sweep)
 
     bcd = commands.add_parser("bcd", help="hard or sticky rods in a periodic field (cosine by default) by BCD, against the exact theory")
     _add_rod_flags(bcd)

@@ -209,8 +209,8 @@ class RunConfig(Section):
 
 
 def example_names() -> list[str]:
-    """Names of the bundled example configurations (``fricgen run NAME``)."""
-    return sorted(p.stem for p in EXAMPLES.glob("*.toml"))
+    """Names of the bundled example configurations (``fricgen run NAME``); ``*_sweep.toml`` are sweeps."""
+    return sorted(p.stem for p in EXAMPLES.glob("*.toml") if not p.stem.endswith("_sweep"))
 
 
 def resolve_source(source: str) -> Path:
@@ -219,7 +219,7 @@ def resolve_source(source: str) -> Path:
     if path.is_file():
         return path
     example = EXAMPLES / f"{source}.toml"
-    if path.name == source and example.is_file():
+    if source in example_names():
         return example
     raise ConfigError("CONFIG", f"no file {source!r} and no bundled example of that name", f"give a TOML file or one of {example_names()}")
 
@@ -236,11 +236,10 @@ def parse_override(text: str) -> tuple[str, object]:
     return key.strip(), parsed
 
 
-def load_config(path: Path, overrides: list[tuple[str, object]] = ()) -> RunConfig:
-    """Read, override (``section.key`` paths) and validate a configuration (no files written); a
-    ``law.folder`` becomes an absolute path (relative ones are taken from the file's folder)."""
+def read_toml(path: Path) -> dict:
+    """The table of a TOML file; ConfigError naming the file if it cannot be read or is not UTF-8 TOML."""
     try:
-        data = tomllib.loads(path.read_text(encoding="utf-8-sig"))
+        return tomllib.loads(path.read_text(encoding="utf-8-sig"))
     except UnicodeDecodeError as error:
         raise ConfigError(
             str(path), f"not UTF-8 text (byte {error.start} is {error.object[error.start : error.start + 1]!r})", "save it as UTF-8 TOML"
@@ -249,6 +248,12 @@ def load_config(path: Path, overrides: list[tuple[str, object]] = ()) -> RunConf
         raise ConfigError(str(path), f"cannot be read: {error.strerror or error}", "give a readable TOML file") from error
     except tomllib.TOMLDecodeError as error:
         raise ConfigError(str(path), f"not valid TOML: {error}", "fix the syntax at that line") from error
+
+
+def load_config(path: Path, overrides: list[tuple[str, object]] = ()) -> RunConfig:
+    """Read, override (``section.key`` paths) and validate a configuration (no files written); a
+    ``law.folder`` becomes an absolute path (relative ones are taken from the file's folder)."""
+    data = read_toml(path)
     for key, value in overrides:
         *sections, name = key.split(".")
         table = data

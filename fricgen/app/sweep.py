@@ -1,0 +1,203 @@
+"""``fricgen sweep``: the points of a sweep file as Dask tasks, each a ``fricgen run`` in its own folder.
+
+Everything is checked before the output folder is touched: the sweep file
+(:mod:`fricgen.app.sweep_config`), every point's configuration by the runner's own :func:`plan`
+(as a fresh run, and as the resume its folder needs), and that a finished point's folder holds a
+run of the same configuration. The points that are not finished run on a ``distributed.LocalCluster``
+(one single-threaded worker process per CPU this process may use, or ``--workers``) or on the
+workers of a running scheduler (``--scheduler``); :mod:`fricgen.app.sweep_task` says what a point
+does in its worker. A point with its summary.json is never run again, so the same command after a
+Ctrl-C or a lost worker completes only what is missing. Outputs: ``OUT/<point>/`` (the run and its
+``run.log``), ``OUT/sweep.json`` (the points and their overrides), ``OUT/results.csv`` and
+``OUT/phase_diagram.png`` (:mod:`fricgen.app.sweep_results`). Exit status: 0 every point done, 1 a
+point failed (blew up), 2 a bad sweep file, 130 interrupted.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import logging
+import os
+import sys
+import tempfile
+import time
+import uuid
+from dataclasses import dataclass
+from pathlib import Path
+
+from tqdm import tqdm
+
+from ..errors import ConfigError
+from .outputs import check_folder, dumps
+from .runner import CHECKPOINT, CONFIG, plan
+from .sweep_config import Point, Sweep, flatten, load_sweep
+from .sweep_results import phase_diagram, result_row, write_table
+from .sweep_task import finished, folder_state, run_point
+
+#: Seconds to reach a scheduler given by --scheduler.
+CONNECT_TIMEOUT = 20
+#: What a point's exit status means when it left no summary.
+EXITS = {1: "blew up", 2: "bad configuration", 130: "interrupted", -2: "interrupted"}
+
+
+@dataclass(frozen=True)
+class SweepRequest:
+    """The command line of ``fricgen sweep``: the file, --out, --scheduler, --workers and --laws."""
+
+    source: str
+    out: str | None = None
+    scheduler: str | None = None
+    workers: int | None = None
+    laws: tuple[str, ...] = ()
+
+
+def run_sweep(request: SweepRequest, as_json: bool = False) -> int:
+    """Check, run what is missing, gather; returns the exit status."""
+    clock = time.perf_counter()
+    sweep = load_sweep(request.source)
+    out = Path(request.out or f"fricgen-sweep-{sweep.name}").absolute()
+    check_folder(out, "--out")
+    workers = _workers(request)
+    points = sweep.points()
+    with tempfile.TemporaryDirectory() as scratch:
+        specs = {point.name: _check_point(sweep, point, out / point.name, Path(scratch), request.laws) for point in points}
+    todo = [spec for spec in specs.values() if spec is not None]
+    try:
+        with _client(request.scheduler, min(workers, len(todo))) if todo else contextlib.nullcontext() as client:
+            out.mkdir(parents=True, exist_ok=True)
+            (out / "sweep.json").write_text(dumps(_record(sweep, points, request)))
+            outcomes = _run(client, todo, len(points)) if todo else {}
+    except KeyboardInterrupt:
+        print(
+            f"fricgen sweep: interrupted; {out} keeps the finished points, and running ones stop at a checkpoint "
+            "(on a scheduler's workers they run to their end). Run the same command again to complete the rest",
+            file=sys.stderr,
+        )
+        return 130
+    rows = [result_row(point, out / point.name, _status(out / point.name, outcomes.get(point.name))) for point in points]
+    files = [write_table(rows, out / "results.csv")]
+    if sweep.plot is not None:
+        panels = next((axis.values for axis in sweep.axes if axis.name == sweep.plot.panels), (None,))
+        files.append(phase_diagram(rows, sweep.plot, panels, out / "phase_diagram.png"))
+    summary = {"out": str(out), "points": len(points), "ran": len(todo), "seconds": time.perf_counter() - clock, "results": rows}
+    print(dumps(summary) if as_json else _describe(summary, files))
+    statuses = {row["status"] for row in rows}
+    return 0 if statuses == {"done"} else 130 if statuses <= {"done", "interrupted"} else 1
+
+
+def _workers(request: SweepRequest) -> int:
+    """Worker processes of the local cluster: --workers, else one per CPU this process may use."""
+    if request.workers is None:
+        return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    if request.scheduler is not None:
+        raise ConfigError("--workers", "sizes the local cluster; with --scheduler the scheduler's workers run the points", "leave one away")
+    if request.workers < 1:
+        raise ConfigError("--workers", f"must be >= 1, got {request.workers}", "give the number of worker processes")
+    return request.workers
+
+
+def _check_point(sweep: Sweep, point: Point, folder: Path, scratch: Path, laws: tuple[str, ...]) -> dict | None:
+    """The task's spec of a point, None if it is finished; ConfigError (named by the point) if its
+    configuration, its checkpoint or its finished run does not fit. A fresh run is planned into an
+    empty scratch folder: the point's own may hold files of a start that died before its first
+    checkpoint, which the task deletes."""
+    try:
+        check_folder(folder, "--out")
+        config = plan(sweep.base, list(point.settings), None, str(scratch / point.name), None, laws).config
+        state = folder_state(folder, config.run.steps)
+        if state == "resume":
+            plan(sweep.base, list(point.settings), None, None, str(folder / CHECKPOINT), laws)
+        if state == "done":
+            _check_finished(folder, config.as_dict())
+            return None
+    except ConfigError as error:
+        raise ConfigError(f"point {point.name}: {error.key}", error.problem, error.fix) from error
+    run = [sweep.base, *(arg for text in point.settings for arg in ("--set", text))]
+    run += [arg for path in laws for arg in ("--laws", str(Path(path).absolute()))]
+    return {"name": point.name, "folder": str(folder), "steps": config.run.steps, "run": run}
+
+
+def _check_finished(folder: Path, wanted: dict) -> None:
+    """A finished point's folder holds a run of this configuration (its config.json)."""
+    try:
+        stored = json.loads((folder / CONFIG).read_text())
+    except (OSError, ValueError):
+        stored = {}
+    stored.pop("command", None)
+    there, here = flatten(stored), flatten(json.loads(dumps(wanted)))
+    differing = [key for key in dict.fromkeys([*here, *there]) if here.get(key) != there.get(key)]
+    if differing:
+        key = differing[0]
+        raise ConfigError(
+            key,
+            f"{folder} holds a finished run with {there.get(key)!r}, not {here.get(key)!r}",
+            "give another --out, or delete that folder",
+        )
+
+
+@contextlib.contextmanager
+def _client(scheduler: str | None, workers: int):
+    """A Dask client: of the scheduler at ``scheduler``, else of a local cluster of ``workers``
+    single-threaded processes (closed, with its workers, when the block ends)."""
+    from distributed import Client, LocalCluster
+
+    if scheduler is None:
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None, silence_logs=logging.ERROR)
+        with cluster, Client(cluster) as client:
+            yield client
+        return
+    try:
+        client = Client(scheduler, timeout=CONNECT_TIMEOUT)
+    except (OSError, TimeoutError, ValueError) as error:
+        raise ConfigError(
+            "--scheduler",
+            f"cannot reach {scheduler}: {error}",
+            "start `dask scheduler` and `dask worker ADDRESS`, or leave --scheduler away",
+        ) from error
+    with client:
+        yield client
+
+
+def _run(client, specs: list[dict], total: int) -> dict[str, dict]:
+    """Each spec as a task, with a progress bar over all points; the outcome of each by point."""
+    from distributed import as_completed
+
+    futures = {client.submit(run_point, spec, key=f"fricgen-sweep-{spec['name']}-{uuid.uuid4().hex[:8]}"): spec["name"] for spec in specs}
+    outcomes = {}
+    with tqdm(total=total, initial=total - len(specs), desc="fricgen sweep", unit="point", file=sys.stderr, dynamic_ncols=True) as bar:
+        for future in as_completed(futures):
+            name = futures[future]
+            outcomes[name] = future.result() if future.status == "finished" else {"point": name, "error": str(future.exception())}
+            bar.update()
+    return outcomes
+
+
+def _status(folder: Path, outcome: dict | None) -> str:
+    """``done`` (summary.json), else what became of the point's task."""
+    if finished(folder):
+        return "done"
+    if outcome is None:
+        return "missing"
+    if "error" in outcome:
+        return f"task failed: {outcome['error']}"
+    return EXITS.get(outcome["returncode"], f"exit status {outcome['returncode']}")
+
+
+def _record(sweep: Sweep, points: list[Point], request: SweepRequest) -> dict:
+    """OUT/sweep.json: the sweep as it ran, point by point."""
+    return {
+        "sweep": request.source,
+        "base": sweep.base,
+        "set": list(sweep.settings),
+        "axes": {axis.name: list(axis.values) for axis in sweep.axes},
+        "points": [{"name": p.name, "coordinates": p.coordinates, "set": list(p.settings)} for p in points],
+    }
+
+
+def _describe(summary: dict, files: list[Path]) -> str:
+    rows = summary["results"]
+    lines = [f"fricgen sweep: {summary['points']} points ({summary['ran']} run now) in {summary['seconds']:.1f} s"]
+    lines += [f"  {row['point']}: {row['status']} (see its run.log)" for row in rows if row["status"] != "done"]
+    lines.append(f"  results in {', '.join(str(f) for f in files)}")
+    return "\n".join(lines)

@@ -1,0 +1,129 @@
+"""One point of a sweep as a Dask task: ``fricgen run`` in a child process that owns the point's folder.
+
+The task, :func:`run_point`, runs on a worker and starts ``python -m fricgen.app.sweep_task SPEC``
+with ``NUMBA_NUM_THREADS=1`` (one core per point) in a session of its own (a Ctrl-C at the terminal
+reaches the sweep, which stops the workers, not each run twice), its output appended to the folder's
+``run.log``. The child
+
+- holds an exclusive lock (``flock``) on the folder's ``.lock`` while it works, so a copy of the point
+  that Dask reschedules after a lost worker waits until the old child has exited, never writing
+  beside it (the kernel drops the lock when a process dies, however it dies);
+- stops as on Ctrl-C once its worker is gone (a watchdog thread sees its parent change): it writes a
+  checkpoint at the end of the current chunk and exits, so no orphan keeps writing;
+- decides under the lock what the folder needs (:func:`folder_state`): nothing, a resume from the
+  checkpoint (bit for bit, as ``fricgen run --resume``), or a fresh start (the files of a start that
+  died before its first checkpoint are deleted first).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import fcntl
+import json
+import os
+import signal
+import socket
+import subprocess
+import sys
+import threading
+import time
+import zipfile
+from pathlib import Path
+
+import numpy as np
+
+from .runner import CHECKPOINT, RUN_FILES, SUMMARY
+
+LOG, LOCK = "run.log", ".lock"
+#: Seconds between the watchdog's looks at its parent.
+WATCH_PERIOD = 0.2
+
+
+def finished(folder: Path) -> bool:
+    """The folder holds a summary.json (complete: one cut short by a kill does not count)."""
+    try:
+        json.loads((folder / SUMMARY).read_text())
+    except (OSError, ValueError):
+        return False
+    return True
+
+
+def folder_state(folder: Path, steps: int) -> str:
+    """``done`` (summary.json), ``resume`` (a checkpoint short of ``steps``, or one that ``fricgen run``
+    will refuse with its reason) or ``fresh`` (nothing, or a run that ended without its summary)."""
+    if finished(folder):
+        return "done"
+    checkpoint = folder / CHECKPOINT
+    if not checkpoint.is_file():
+        return "fresh"
+    try:
+        with np.load(checkpoint) as data:
+            return "fresh" if int(data["step"]) == steps else "resume"
+    except (OSError, ValueError, KeyError, zipfile.BadZipFile):
+        return "resume"  # the runner's --resume check names the problem
+
+
+def run_point(spec: dict) -> dict:
+    """The Dask task of a point: its child process to the end; ``spec`` has the point's ``name``,
+    ``folder``, ``steps`` and ``run`` (the arguments of ``fricgen run`` without --out/--resume)."""
+    folder = Path(spec["folder"])
+    folder.mkdir(parents=True, exist_ok=True)
+    clock = time.perf_counter()
+    with open(folder / LOG, "a") as log:
+        log.write(f"# {time.strftime('%Y-%m-%d %H:%M:%S')} on {socket.gethostname()}, worker pid {os.getpid()}\n")
+        log.flush()
+        child = subprocess.run(
+            [sys.executable, "-m", __name__, json.dumps({**spec, "parent": os.getpid()})],
+            stdout=log,
+            stderr=subprocess.STDOUT,
+            env={**os.environ, "NUMBA_NUM_THREADS": "1", "TQDM_MININTERVAL": "10"},
+            start_new_session=True,
+            check=False,
+        )
+    return {"point": spec["name"], "returncode": child.returncode, "seconds": time.perf_counter() - clock}
+
+
+def _watch(parent: int) -> None:
+    """SIGINT to this process once ``parent`` (the worker) is gone: the run stops as on Ctrl-C."""
+
+    def watch():
+        while os.getppid() == parent:
+            time.sleep(WATCH_PERIOD)
+        os.kill(os.getpid(), signal.SIGINT)
+
+    threading.Thread(target=watch, daemon=True).start()
+
+
+@contextlib.contextmanager
+def _lock(folder: Path):
+    """The folder's lock, held until the block ends (or the process does); its file names the holder."""
+    with open(folder / LOCK, "a+") as handle:
+        fcntl.flock(handle, fcntl.LOCK_EX)
+        handle.truncate(0)
+        handle.write(f"{socket.gethostname()} {os.getpid()}\n")
+        handle.flush()
+        yield
+
+
+def _child(spec: dict) -> int:
+    from .cli import main
+
+    _watch(spec["parent"])
+    folder = Path(spec["folder"])
+    with _lock(folder):
+        state = folder_state(folder, spec["steps"])
+        print(f"fricgen sweep: point {spec['name']}: {state}", flush=True)
+        if state == "done":
+            return 0
+        if state == "resume":
+            return main(["run", *spec["run"], "--resume", str(folder / CHECKPOINT)])
+        for name in (*RUN_FILES, f"{CHECKPOINT}.tmp"):
+            (folder / name).unlink(missing_ok=True)
+        return main(["run", *spec["run"], "--out", str(folder)])
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(_child(json.loads(sys.argv[1])))
+    except KeyboardInterrupt:  # stopped before or after the run (the run itself exits 130 on its own)
+        sys.exit(130)
