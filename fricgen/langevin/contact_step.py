@@ -25,7 +25,7 @@ reversing the sliding).
 
 Pairs of one colour (greedy edge colouring of the pairs in contact, taken in (i, k) order) share no
 particle and run in parallel; the colours run one after another. The noise of a pair is keyed on
-(seed, step, CONTACT, i, k): results are bit-identical for any thread count, neighbour-list skin or
+(seed, step, CONTACT, i, k) (rng.pair_key; ziggurat normals): results are bit-identical for any thread count, neighbour-list skin or
 chunking.
 """
 
@@ -38,7 +38,7 @@ import numpy as np
 
 from derive.calculus import Calculus
 
-from ..rng import normal_pair_at, uniform_at
+from ..rng import pair_key, uniform, ziggurat_normal
 from .neighbors import minimum_image
 from .pairs import WCA_RANGE, cross
 
@@ -195,12 +195,12 @@ def _tangents(nx, ny, nz, dims):
 def _propose(x, w, r, mu, dyn, params, law, key, pair):
     """(y, 1 - min(1, alpha)) of the Metropolis–Hastings move of the mode from x; y = x if the move
     leaves the map's principal strip (a proposal to stay) or D = 0."""
-    i, k, dims, kT = pair[0], pair[1], dyn.dims, dyn.kT
+    dims, kT = dyn.dims, dyn.kT
     _, m, s2, g = mode_step(x, w, r, mu, dyn, params, law)
     if not s2 > 0.0:
         return x, 0.0
-    z0, z1 = normal_pair_at(key, i, k, 0)
-    xi = complex(z0, z1 if dims == 3 else 0.0)
+    key = pair_key(key, pair[0], pair[1])  # draws 0 and 1: the normals, 2: the uniform
+    xi = complex(ziggurat_normal(key, 0), ziggurat_normal(key, 1) if dims == 3 else 0.0)
     move = m + math.sqrt(s2) * xi
     g_w = g * move
     if abs(g_w.imag) >= math.pi:
@@ -219,7 +219,7 @@ def _propose(x, w, r, mu, dyn, params, law, key, pair):
     alpha = math.exp(log_alpha)
     if not alpha == alpha:  # NaN
         return x, 1.0
-    return (y if uniform_at(key, i, k, 1) < alpha else x), 1.0 - alpha
+    return (y if uniform(key, 2) < alpha else x), 1.0 - alpha
 
 
 @numba.njit(inline="always", cache=True)
