@@ -50,28 +50,18 @@ _ONE, _WORD = np.uint64(1), 64
 
 
 @numba.njit(parallel=True, cache=True)
-def find_contacts(pos, bodies, dyn, couplings, weight, lists):
-    """The pairs i < k within WCA reach (not both immobile), in (i, k) order: (pairs (M, 2), geometry (M, GEOMETRY))."""
+def find_contacts(pos, bodies, dyn, couplings, weight, lists, touching):
+    """The pairs i < k that ``touching`` marks (within WCA reach, not both immobile; set by
+    fricgen.langevin.forces at these positions), in (i, k) order: (pairs (M, 2), geometry (M, GEOMETRY))."""
     radius, inv_mass, inv_inertia = bodies
     start, neighbors = lists[0], lists[1]
     box, inv_box, dims, size = dyn.box, dyn.inv_box, dyn.dims, pos.shape[0]
-    touching = np.zeros(neighbors.size, dtype=np.bool_)
     first = np.zeros(size + 1, dtype=np.int64)
-    for i in numba.prange(size):
-        for slot in range(start[i], start[i + 1]):
-            k = neighbors[slot]
-            if k < i or (inv_mass[i] == 0.0 and inv_mass[k] == 0.0):
-                continue
-            r2 = 0.0
-            for a in range(dims):
-                d = minimum_image(pos[k, a] - pos[i, a], box[a], inv_box[a])
-                r2 += d * d
-            reach = WCA_RANGE * (radius[i] + radius[k])
-            if r2 < reach * reach:
-                touching[slot] = True
-                first[i + 1] += 1
     for i in range(size):
-        first[i + 1] += first[i]
+        count = 0
+        for slot in range(start[i], start[i + 1]):
+            count += touching[slot]
+        first[i + 1] = first[i] + count
     pairs, geometry = np.empty((first[size], 2), dtype=np.int64), np.zeros((first[size], GEOMETRY))
     for i in numba.prange(size):
         p = first[i]
@@ -272,10 +262,11 @@ def _sweep(motion, bodies, dyn, params, law, key, pairs, geometry, classes):
 
 
 @numba.njit(cache=True)
-def contact_step(motion, bodies, dyn, couplings, law, lists, key):
-    """The pairwise step of all pairs in contact; ``law`` = (contact, slope, weight) kernels, ``key``
-    the step's CONTACT stream key. Returns (proposals, rejections, sum of rejection probabilities)."""
-    pairs, geometry = find_contacts(motion.position, bodies, dyn, couplings, law[2], lists)
+def contact_step(motion, bodies, dyn, couplings, law, lists, touching, key):
+    """The pairwise step of all pairs in contact (``touching``, see find_contacts); ``law`` = (contact,
+    slope, weight) kernels, ``key`` the step's CONTACT stream key. Returns (proposals, rejections, sum
+    of rejection probabilities)."""
+    pairs, geometry = find_contacts(motion.position, bodies, dyn, couplings, law[2], lists, touching)
     classes = colour_classes(pairs, motion.position.shape[0])
     rejection, rejected = _sweep(motion, bodies, dyn, couplings.law, law, key, pairs, geometry, classes)
     total, count = 0.0, 0
