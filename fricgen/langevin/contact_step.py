@@ -40,7 +40,7 @@ from derive.calculus import Calculus
 
 from ..rng import pair_key, uniform, ziggurat_normal
 from .neighbors import minimum_image
-from .pairs import WCA_RANGE, cross
+from .pairs import cross
 
 #: theta of each scheme (Calculus.index): where the calculus evaluates D within a step.
 THETA = np.array([float(c.theta) for c in Calculus])
