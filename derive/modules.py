@@ -198,7 +198,9 @@ def _special_hash() -> str:
 
 
 def special_module() -> str:
-    return header([f"Source: derive/kernel_sources/special.py (hand-written numerics), hash {_special_hash()}"]) + SPECIAL_SOURCE.read_text()
+    return (
+        header([f"Source: derive/kernel_sources/special.py (hand-written numerics), hash {_special_hash()}"]) + SPECIAL_SOURCE.read_text()
+    )
 
 
 def package_module(doc: str) -> str:
