@@ -155,8 +155,8 @@ def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, sou
             f"{INDENT}return friction_over_u(u, w, r, params), noise_sqrt_{c}({args})\n"
         )
     code = "".join("\n\n" + f for f in functions)
-    if "erfcx(" in code:
-        parts.insert(4, "\nfrom ..special import erfcx\n")
+    if "erfcx(" in code:  # the hash: a new erfcx rewrites this file, so Numba's cache (which tracks only its date) recompiles it
+        parts.insert(4, f"\nfrom ..special import erfcx  # special.py {_special_hash()[:16]}\n")
     return "".join(parts) + code
 
 
@@ -193,10 +193,14 @@ def potential_module(potential: Potential) -> str:
     return top + quote_doc(doc) + "\n" + "import math\n" + "import numba\n" + constants + "".join("\n\n" + f for f in functions)
 
 
+def _special_hash() -> str:
+    return hashlib.sha256(SPECIAL_SOURCE.read_text().encode()).hexdigest()
+
+
 def special_module() -> str:
-    text = SPECIAL_SOURCE.read_text()
-    digest = hashlib.sha256(text.encode()).hexdigest()
-    return header([f"Source: derive/kernel_sources/special.py (hand-written numerics), hash {digest}"]) + text
+    return (
+        header([f"Source: derive/kernel_sources/special.py (hand-written numerics), hash {_special_hash()}"]) + SPECIAL_SOURCE.read_text()
+    )
 
 
 def package_module(doc: str) -> str:

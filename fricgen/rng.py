@@ -5,7 +5,7 @@ neighbour order and on however many threads, and a restarted run continues bit-i
 Keys are mixed with chained SplitMix64 finalisers (Steele, Lea, Flood 2014); normals come from
 the Box–Muller transform of two 53-bit uniforms (two normals per key). The cheaper ``ziggurat_normal``
 (one normal per index from one SplitMix64 output, Marsaglia & Tsang's ziggurat) serves engines that
-need one normal per particle and step; ``uniform`` and ``uniform_at`` give 53-bit uniforms (Metropolis tests).
+need one normal per particle and step, or per pair (with ``pair_key``); ``uniform`` gives 53-bit uniforms (Metropolis tests).
 
 The physics: docs/physics.md#counter-based-noise.
 """
@@ -52,26 +52,21 @@ def stream_key(seed, step, stream):
 
 
 @numba.njit(inline="always", cache=True)
-def _pair_state(base, i, k, counter):
-    return _mix(_mix(base ^ np.uint64(i)) ^ np.uint64(k)) ^ np.uint64(counter)
+def pair_key(base, i, k):
+    """The key of pair (i, k) in stream key ``base``: its draws are ziggurat_normal(key, j) and
+    uniform(key, j), each j once."""
+    return _mix(_mix(base ^ np.uint64(i)) ^ np.uint64(k))
 
 
 @numba.njit(inline="always", cache=True)
 def normal_pair_at(base, i, k, counter):
-    """Two independent standard normals for (stream key, i, k) and a small counter (0, 1, 2, ...)."""
-    a = _mix(_pair_state(base, i, k, counter))
+    """Two independent standard normals (Box–Muller) for (stream key, i, k) and a small counter (0, 1, 2, ...)."""
+    a = _mix(pair_key(base, i, k) ^ np.uint64(counter))
     b = _mix(a)
     u1 = (float(a >> _S11) + 0.5) * _TWO_53  # in (0, 1): log is finite
     u2 = float(b >> _S11) * _TWO_53
     radius = math.sqrt(-2.0 * math.log(u1))
     return radius * math.cos(2.0 * math.pi * u2), radius * math.sin(2.0 * math.pi * u2)
-
-
-@numba.njit(inline="always", cache=True)
-def uniform_at(base, i, k, counter):
-    """A uniform number in [0, 1) (53 bits) for (stream key, i, k) and a counter. It shares its bits
-    with normal_pair_at of the same counter: give the uniform a counter of its own."""
-    return float(_mix(_pair_state(base, i, k, counter)) >> _S11) * _TWO_53
 
 
 @numba.njit(inline="always", cache=True)

@@ -25,7 +25,7 @@ reversing the sliding).
 
 Pairs of one colour (greedy edge colouring of the pairs in contact, taken in (i, k) order) share no
 particle and run in parallel; the colours run one after another. The noise of a pair is keyed on
-(seed, step, CONTACT, i, k): results are bit-identical for any thread count, neighbour-list skin or
+(seed, step, CONTACT, i, k) (rng.pair_key; ziggurat normals): results are bit-identical for any thread count, neighbour-list skin or
 chunking.
 """
 
@@ -38,9 +38,9 @@ import numpy as np
 
 from derive.calculus import Calculus
 
-from ..rng import normal_pair_at, uniform_at
+from ..rng import pair_key, uniform, ziggurat_normal
 from .neighbors import minimum_image
-from .pairs import WCA_RANGE, cross
+from .pairs import cross
 
 #: theta of each scheme (Calculus.index): where the calculus evaluates D within a step.
 THETA = np.array([float(c.theta) for c in Calculus])
@@ -50,28 +50,18 @@ _ONE, _WORD = np.uint64(1), 64
 
 
 @numba.njit(parallel=True, cache=True)
-def find_contacts(pos, bodies, dyn, couplings, weight, lists):
-    """The pairs i < k within WCA reach (not both immobile), in (i, k) order: (pairs (M, 2), geometry (M, GEOMETRY))."""
+def find_contacts(pos, bodies, dyn, couplings, weight, lists, touching):
+    """The pairs i < k that ``touching`` marks (within WCA reach, not both immobile; set by
+    fricgen.langevin.forces at these positions), in (i, k) order: (pairs (M, 2), geometry (M, GEOMETRY))."""
     radius, inv_mass, inv_inertia = bodies
     start, neighbors = lists[0], lists[1]
     box, inv_box, dims, size = dyn.box, dyn.inv_box, dyn.dims, pos.shape[0]
-    touching = np.zeros(neighbors.size, dtype=np.bool_)
     first = np.zeros(size + 1, dtype=np.int64)
-    for i in numba.prange(size):
-        for slot in range(start[i], start[i + 1]):
-            k = neighbors[slot]
-            if k < i or (inv_mass[i] == 0.0 and inv_mass[k] == 0.0):
-                continue
-            r2 = 0.0
-            for a in range(dims):
-                d = minimum_image(pos[k, a] - pos[i, a], box[a], inv_box[a])
-                r2 += d * d
-            reach = WCA_RANGE * (radius[i] + radius[k])
-            if r2 < reach * reach:
-                touching[slot] = True
-                first[i + 1] += 1
     for i in range(size):
-        first[i + 1] += first[i]
+        count = 0
+        for slot in range(start[i], start[i + 1]):
+            count += touching[slot]
+        first[i + 1] = first[i] + count
     pairs, geometry = np.empty((first[size], 2), dtype=np.int64), np.zeros((first[size], GEOMETRY))
     for i in numba.prange(size):
         p = first[i]
@@ -195,12 +185,12 @@ def _tangents(nx, ny, nz, dims):
 def _propose(x, w, r, mu, dyn, params, law, key, pair):
     """(y, 1 - min(1, alpha)) of the Metropolis–Hastings move of the mode from x; y = x if the move
     leaves the map's principal strip (a proposal to stay) or D = 0."""
-    i, k, dims, kT = pair[0], pair[1], dyn.dims, dyn.kT
+    dims, kT = dyn.dims, dyn.kT
     _, m, s2, g = mode_step(x, w, r, mu, dyn, params, law)
     if not s2 > 0.0:
         return x, 0.0
-    z0, z1 = normal_pair_at(key, i, k, 0)
-    xi = complex(z0, z1 if dims == 3 else 0.0)
+    key = pair_key(key, pair[0], pair[1])  # draws 0 and 1: the normals, 2: the uniform
+    xi = complex(ziggurat_normal(key, 0), ziggurat_normal(key, 1) if dims == 3 else 0.0)
     move = m + math.sqrt(s2) * xi
     g_w = g * move
     if abs(g_w.imag) >= math.pi:
@@ -219,7 +209,7 @@ def _propose(x, w, r, mu, dyn, params, law, key, pair):
     alpha = math.exp(log_alpha)
     if not alpha == alpha:  # NaN
         return x, 1.0
-    return (y if uniform_at(key, i, k, 1) < alpha else x), 1.0 - alpha
+    return (y if uniform(key, 2) < alpha else x), 1.0 - alpha
 
 
 @numba.njit(inline="always", cache=True)
@@ -272,10 +262,11 @@ def _sweep(motion, bodies, dyn, params, law, key, pairs, geometry, classes):
 
 
 @numba.njit(cache=True)
-def contact_step(motion, bodies, dyn, couplings, law, lists, key):
-    """The pairwise step of all pairs in contact; ``law`` = (contact, slope, weight) kernels, ``key``
-    the step's CONTACT stream key. Returns (proposals, rejections, sum of rejection probabilities)."""
-    pairs, geometry = find_contacts(motion.position, bodies, dyn, couplings, law[2], lists)
+def contact_step(motion, bodies, dyn, couplings, law, lists, touching, key):
+    """The pairwise step of all pairs in contact (``touching``, see find_contacts); ``law`` = (contact,
+    slope, weight) kernels, ``key`` the step's CONTACT stream key. Returns (proposals, rejections, sum
+    of rejection probabilities)."""
+    pairs, geometry = find_contacts(motion.position, bodies, dyn, couplings, law[2], lists, touching)
     classes = colour_classes(pairs, motion.position.shape[0])
     rejection, rejected = _sweep(motion, bodies, dyn, couplings.law, law, key, pairs, geometry, classes)
     total, count = 0.0, 0

@@ -8,6 +8,10 @@ Both add the same numbers in the same order: a particle's contributions in the s
 neighbour list (partners k < i first, whose pairs the serial loop meets earlier), starting from 0;
 and k computes -F_ik exactly, since the minimum image is exactly antisymmetric. So trajectories do
 not depend on the thread count, and the total force is exactly zero.
+
+Both also mark the pairs i < k that touch (within WCA_RANGE sigma_ik, not both immobile) in
+``touching``, one flag per neighbour-list slot: the pairwise contact step reads them instead of
+measuring every distance again (fricgen.langevin.contact_step.find_contacts).
 """
 
 from __future__ import annotations
@@ -38,18 +42,20 @@ def _pair_force(pos, radius, dyn, i, k, pot_force, params):
 
 
 @numba.njit(cache=True)
-def _each_pair_once(pos, bodies, dyn, pot_force, params, lists, force):
+def _each_pair_once(pos, bodies, dyn, pot_force, params, lists, force, touching):
     start, neighbors = lists[0], lists[1]
     force[:] = 0.0
     closest = np.inf
     for i in range(pos.shape[0]):
         for slot in range(start[i], start[i + 1]):
             k = neighbors[slot]
+            touching[slot] = False
             if k < i or (bodies.inv_mass[i] == 0.0 and bodies.inv_mass[k] == 0.0):
                 continue
             fx, fy, fz, ratio = _pair_force(pos, bodies.radius, dyn, i, k, pot_force, params)
             if ratio == np.inf:
                 continue
+            touching[slot] = True
             closest = min(closest, ratio)
             force[i, 0] += fx
             force[i, 1] += fy
@@ -61,18 +67,20 @@ def _each_pair_once(pos, bodies, dyn, pot_force, params, lists, force):
 
 
 @numba.njit(parallel=True, cache=True)
-def _each_particle(pos, bodies, dyn, pot_force, params, lists, force):
+def _each_particle(pos, bodies, dyn, pot_force, params, lists, force, touching):
     start, neighbors = lists[0], lists[1]
     closest = np.full(pos.shape[0], np.inf)
     for i in numba.prange(pos.shape[0]):
         fx, fy, fz = 0.0, 0.0, 0.0
         for slot in range(start[i], start[i + 1]):
             k = neighbors[slot]
+            touching[slot] = False
             if bodies.inv_mass[i] == 0.0 and bodies.inv_mass[k] == 0.0:
                 continue
             gx, gy, gz, ratio = _pair_force(pos, bodies.radius, dyn, i, k, pot_force, params)
             if ratio == np.inf:
                 continue
+            touching[slot] = k > i
             closest[i] = min(closest[i], ratio)
             fx += gx
             fy += gy
@@ -82,9 +90,10 @@ def _each_particle(pos, bodies, dyn, pot_force, params, lists, force):
 
 
 @numba.njit(cache=True)
-def conservative_forces(pos, bodies, dyn, couplings, pot_force, lists, force):
-    """force[i] = conservative force on i (pairs within the potential's range WCA_RANGE sigma_ik);
-    returns the smallest r / sigma_ik of those pairs. ``lists`` = (start, neighbors, reverse)."""
+def conservative_forces(pos, bodies, dyn, couplings, pot_force, lists, force, touching):
+    """force[i] = conservative force on i (pairs within the potential's range WCA_RANGE sigma_ik) and
+    touching[slot] whether the slot's pair (i < k) is one of them; returns the smallest r / sigma_ik of
+    those pairs. ``lists`` = (start, neighbors, reverse)."""
     if dyn.threads == 1:
-        return _each_pair_once(pos, bodies, dyn, pot_force, couplings.potential, lists, force)
-    return _each_particle(pos, bodies, dyn, pot_force, couplings.potential, lists, force)
+        return _each_pair_once(pos, bodies, dyn, pot_force, couplings.potential, lists, force, touching)
+    return _each_particle(pos, bodies, dyn, pot_force, couplings.potential, lists, force, touching)

@@ -102,13 +102,15 @@ def advance(motion, bodies, dyn, couplings, pot_force, contact, slope, weight, f
     slots = np.zeros((lists[1].size if explicit else 0, PAIR_FIELDS))
     terms, again = np.zeros((TERMS if explicit else 1, size, 3)), np.zeros((TERMS if explicit else 0, size, 3))
     force = terms[0]  # the conservative force (the explicit kick's pair pass fills it with the contact terms)
+    touching = np.zeros(lists[1].size, dtype=np.bool_)  # the pairs in contact, marked by the force pass
     new = (np.empty((size, 3)), np.empty((size, 3)))
-    conservative_forces(pos, bodies, dyn, couplings, pot_force, lists, force)  # at the initial positions
+    conservative_forces(pos, bodies, dyn, couplings, pot_force, lists, force, touching)  # at the initial positions
     for step in range(first_step, first_step + steps):
         n = step - first_step
         if kick_drift_solvent(motion, bodies, dyn, force, solvent, stream_key(dyn.seed, step, SOLVENT), reference) > 0.5 * skin:
             lists = build_neighbors(pos, dyn.box, dims, cutoff)
             slots = np.zeros((lists[1].size if explicit else 0, PAIR_FIELDS))
+            touching = np.zeros(lists[1].size, dtype=np.bool_)
             reference[:] = pos
             builds += 1
         key = stream_key(dyn.seed, step, CONTACT)
@@ -118,7 +120,7 @@ def advance(motion, bodies, dyn, couplings, pot_force, contact, slope, weight, f
             )
             gather(bodies.radius, lists, slots, terms)
         else:
-            closest = conservative_forces(pos, bodies, dyn, couplings, pot_force, lists, force)
+            closest = conservative_forces(pos, bodies, dyn, couplings, pot_force, lists, force, touching)
         if closest < dyn.overlap_limit:
             return OVERLAP, n, builds, proposals, rejections, rejection
         velocities = (vel, omega)
@@ -132,7 +134,7 @@ def advance(motion, bodies, dyn, couplings, pot_force, contact, slope, weight, f
                 _correct(new, bodies, dyn, terms, again)
             velocities = new
         elif dyn.friction:
-            tally = contact_step(motion, bodies, dyn, couplings, (contact, slope, weight), lists, key)
+            tally = contact_step(motion, bodies, dyn, couplings, (contact, slope, weight), lists, touching, key)
             proposals, rejections, rejection = proposals + tally[0], rejections + tally[1], rejection + tally[2]
         if not (np.isfinite(velocities[0]).all() and np.isfinite(velocities[1]).all()):
             return NOT_FINITE, n, builds, proposals, rejections, rejection

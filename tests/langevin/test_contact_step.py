@@ -19,7 +19,7 @@ from fricgen.kernels import CONTACT_KERNEL, load_law_kernels
 from fricgen.langevin import Particles, Simulation, lattice_state, thermostat_check
 from fricgen.langevin.contact_step import colour_classes, update_pair
 from fricgen.langevin.records import Bodies, Dynamics, Motion
-from fricgen.rng import CONTACT, normal_pair_at, stream_key, uniform_at
+from fricgen.rng import CONTACT, pair_key, stream_key, uniform, ziggurat_normal
 
 from .helpers import config, passive
 
@@ -103,12 +103,12 @@ def test_colours_share_no_particle_and_keep_the_pair_order():
 def _draws(key, count):
     out = np.empty((count, 3))
     for j in range(count):
-        out[j, 0], out[j, 1] = normal_pair_at(key, j, j + 1, 0)
-        out[j, 2] = uniform_at(key, j, j + 1, 1)
+        pair = pair_key(key, j, j + 1)  # as the contact step draws: normals 0 and 1, the uniform 2
+        out[j, 0], out[j, 1], out[j, 2] = ziggurat_normal(pair, 0), ziggurat_normal(pair, 1), uniform(pair, 2)
     return out
 
 
-def test_uniform_at_is_uniform_and_independent_of_the_pair_normals():
+def test_the_pair_draws_are_normal_uniform_and_independent():
     draws = _draws(np.uint64(stream_key(3, 7, CONTACT)), 200_000)
     uniform = draws[:, 2]
     assert uniform.min() >= 0 and uniform.max() < 1
@@ -116,9 +116,10 @@ def test_uniform_at_is_uniform_and_independent_of_the_pair_normals():
     assert abs(uniform.mean() - 0.5) < 5 * error * math.sqrt(1 / 12)
     assert abs(np.sort(uniform) - np.linspace(0, 1, uniform.size)).max() < 5 * error  # Kolmogorov–Smirnov
     for column in (0, 1):
-        assert abs(np.corrcoef(draws[:, column], uniform)[0, 1]) < 5 * error
-    key = np.uint64(stream_key(3, 7, CONTACT))
-    assert uniform_at(key, 0, 1, 1) != uniform_at(key, 0, 1, 2)
+        normal = draws[:, column]
+        assert abs(normal.mean()) < 5 * error and abs(normal.var() - 1) < 5 * error * math.sqrt(2)
+        assert abs(np.corrcoef(normal, uniform)[0, 1]) < 5 * error
+    assert abs(np.corrcoef(draws[:, 0], draws[:, 1])[0, 1]) < 5 * error
 
 
 STATICS = [

@@ -25,8 +25,14 @@ def test_each_pair_once_and_each_particle_agree_bit_for_bit(dim):
     couplings = Couplings(np.array([1.0, 1.0]), np.zeros(1), False)
     lists = build_neighbors(state.position, state.box, dim, 2 ** (1 / 6) + 0.3)
     once, each = np.zeros((300, 3)), np.zeros((300, 3))
-    closest = _each_pair_once(state.position, bodies, dyn, wca.force, couplings.potential, lists, once)
-    assert closest == _each_particle(state.position, bodies, dyn, wca.force, couplings.potential, lists, each) < 2 ** (1 / 6)
+    touching_once, touching_each = np.ones(lists[1].size, dtype=bool), np.ones(lists[1].size, dtype=bool)
+    closest = _each_pair_once(state.position, bodies, dyn, wca.force, couplings.potential, lists, once, touching_once)
+    assert closest == _each_particle(state.position, bodies, dyn, wca.force, couplings.potential, lists, each, touching_each) < 2 ** (1 / 6)
+    owner = np.repeat(np.arange(300), np.diff(lists[0]))
+    d = state.position[lists[1]] - state.position[owner]
+    d -= state.box * np.rint(d / np.where(state.box > 0, state.box, 1))
+    expected = (lists[1] > owner) & ((d[:, :dim] ** 2).sum(axis=1) < (2 ** (1 / 6)) ** 2)
+    assert expected.any() and np.array_equal(touching_once, expected) and np.array_equal(touching_each, expected)
     slots, terms = np.zeros((lists[1].size, PAIR_FIELDS)), np.zeros((TERMS, 300, 3))
     switches = (np.uint64(1), False, False, True)
     contact = load_law_kernels("linear").contact("ito")  # not called: friction is off
