@@ -23,7 +23,6 @@ model returns inf/nan (an overflowing exp, a division by zero); such a point fai
 from __future__ import annotations
 
 import builtins
-import fractions
 import importlib
 import math
 import types
@@ -79,7 +78,7 @@ def python_kernels(model: NoiseModel) -> dict:
 
     fake = _Numba()
     special = types.ModuleType("special")
-    special.__dict__.update(execute(modules.SPECIAL_SOURCE.read_text(), {"math": math, "numba": fake, "fractions": fractions}))
+    special.__dict__.update(execute(modules.SPECIAL_SOURCE.read_text(), {"math": math, "numba": fake}))
     imports = {"math": math, "numba": fake, "..special": special}
     source = modules.law_module(model.law, {model.calculus.value: model}, "", "derive.verification")
     if "numpy" in source:  # generated code may use numpy (tests/test_layers.py); loaded only when it does

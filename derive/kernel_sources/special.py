@@ -1,37 +1,18 @@
 """Special functions for generated kernels (Numba has no scipy.special inside nopython code)."""
 
 import math
-from fractions import Fraction
 
 import numba
 
 _SQRT_PI = 1.7724538509055160273
-_TERMS = 20  # depth of Laplace's continued fraction for x >= 4
-
-
-def _convergent(terms):
-    """The continued fraction t = x + (1/2)/(x + (2/2)/(x + ... (terms/2)/x)) as A(x)/B(x), by the
-    recurrences P_k = x P_(k-1) + (k/2) P_(k-2). A is odd and B even, both with positive coefficients:
-    returns (B(x), A(x)/x) as coefficient tuples in y = x^2, lowest power first, exact before rounding."""
-    a_before, a = [Fraction(1)], [Fraction(0), Fraction(1)]
-    b_before, b = [Fraction(0)], [Fraction(1)]
-    for k in range(1, terms + 1):
-        a_before, a = a, _times_x_plus(a, a_before, Fraction(k, 2))
-        b_before, b = b, _times_x_plus(b, b_before, Fraction(k, 2))
-    return tuple(float(c) for c in b[0::2]), tuple(float(c) for c in a[1::2])
-
-
-def _times_x_plus(p, q, c):
-    """Coefficients of x p(x) + c q(x)."""
-    out = [Fraction(0)] * max(len(p) + 1, len(q))
-    for j, value in enumerate(p):
-        out[j + 1] += value
-    for j, value in enumerate(q):
-        out[j] += c * value
-    return out
-
-
-_NUMERATOR, _DENOMINATOR = _convergent(_TERMS)
+#: Laplace's continued fraction t = x + (1/2)/(x + (2/2)/(x + ... (20/2)/x)) as A(x)/B(x), from the
+#: recurrences P_k = x P_(k-1) + (k/2) P_(k-2): B is even and A odd, with positive coefficients, here
+#: as polynomials in y = x^2, lowest power first: B(x) and A(x)/x. The values are exact dyadic
+#: rationals (tests/codegen/test_special.py recomputes them with fractions).
+_NUMERATOR = (3628800.0, 52979477.783203125, 122404170.41015625, 104750739.84375, 43369889.0625, 9816994.6875,
+              1287706.875, 99577.5, 4437.0, 104.5, 1.0)  # fmt: skip
+_DENOMINATOR = (13427061.108398438, 89513740.72265625, 161124733.30078125, 122761701.5625, 47740661.71875,
+                10416144.375, 1335403.125, 101745.0, 4488.75, 105.0, 1.0)  # fmt: skip
 
 
 @numba.njit(cache=True)
