@@ -1,10 +1,11 @@
 """Benchmark: the Langevin engine with another busy process on the machine (users' machines are busy).
 
 2-D, N = 10 000, area fraction 0.6, WCA + solvent + Coulomb–Newton friction with its noise,
-dt = 1e-3. Prints particle-steps per second on 1 thread and on 2 threads with OpenMP's active
-(spinning) and passive (sleeping) wait policies, quiet and with one competing busy process that the
-benchmark starts and stops itself. Each figure is measured in a
-fresh process (the wait policy is read when the OpenMP runtime starts), the configurations
+dt = 1e-3, timed after 2 t0 from the lattice. Prints particle-steps per second on 1 and 2 threads
+with Numba's TBB threading layer (fricgen's default where the tbb wheel is installed, see
+fricgen/__init__.py) and with OpenMP (its default wait policy, and passive), quiet and with one
+competing busy process that the benchmark starts and stops itself. Each figure is measured in a
+fresh process (the layer and the wait policy are fixed when the threads start), the configurations
 alternate, and the medians over the rounds are printed. Run: python benchmarks/contention.py
 """
 
@@ -17,20 +18,23 @@ import subprocess
 import sys
 
 ROUNDS = 3
+SETUPS = [("tbb", 1, ""), ("tbb", 2, ""), ("omp", 1, ""), ("omp", 2, ""), ("omp", 2, "PASSIVE")]
 MEASURE = """
 import statistics, time
-import numba
+import fricgen, numba
 numba.set_num_threads({threads})
 from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, Thermostat, lattice_state
 particles = Particles.spheres(10_000)
 config = LangevinConfig(law=Law("coulomb_newton"), thermostat=Thermostat(dt=1e-3))
 simulation = Simulation(config, particles, lattice_state(particles, 2, 0.6))
-simulation.advance(100)
+simulation.threads = {threads}
+simulation.advance(2000)
 times = []
 for _ in range(3):
     start = time.perf_counter()
     simulation.advance(300)
     times.append(time.perf_counter() - start)
+assert numba.threading_layer() == "{layer}", numba.threading_layer()
 print(10_000 * 300 / statistics.median(times))
 """
 
@@ -42,33 +46,33 @@ def spin() -> None:
         x += 1
 
 
-def rate(threads: int, policy: str) -> float:
-    env = {**os.environ, "OMP_WAIT_POLICY": policy}
-    done = subprocess.run([sys.executable, "-c", MEASURE.format(threads=threads)], capture_output=True, text=True, env=env, check=True)
-    return float(done.stdout.split()[-1])
+def rate(layer: str, threads: int, policy: str) -> float:
+    env = {**os.environ, "NUMBA_THREADING_LAYER": layer, **({"OMP_WAIT_POLICY": policy} if policy else {})}
+    command = [sys.executable, "-c", MEASURE.format(threads=threads, layer=layer)]
+    return float(subprocess.run(command, capture_output=True, text=True, env=env, check=True).stdout.split()[-1])
 
 
 def main() -> None:
-    setups = [(1, "ACTIVE"), (2, "ACTIVE"), (2, "PASSIVE")]
     for busy in (False, True):
-        rates = {setup: [] for setup in setups}
+        rates = {setup: [] for setup in SETUPS}
         competitor = multiprocessing.Process(target=spin, daemon=True) if busy else None
         if competitor:
             competitor.start()
         try:
             for _ in range(ROUNDS):
-                for setup in setups:
+                for setup in SETUPS:
                     rates[setup].append(rate(*setup))
         finally:
             if competitor:
                 competitor.terminate()
                 competitor.join()
         print("with one competing busy process:" if busy else "quiet machine:")
-        for (threads, policy), values in rates.items():
-            print(f"  {threads} thread(s), OMP_WAIT_POLICY={policy:7s}: median {statistics.median(values) / 1e6:.2f} M particle-steps/s")
-        single = statistics.median(rates[(1, "ACTIVE")])
-        for policy in ("ACTIVE", "PASSIVE"):
-            print(f"  2 threads ({policy.lower()}) / 1 thread: {statistics.median(rates[(2, policy)]) / single:.2f}")
+        for (layer, threads, policy), values in rates.items():
+            print(f"  {layer:3s} {threads} thread(s) {policy or 'default':7s}: median {statistics.median(values) / 1e6:.2f} M particle-steps/s")
+        for layer, threads, policy in SETUPS:
+            if threads == 2:
+                ratio = statistics.median(rates[layer, 2, policy]) / statistics.median(rates[layer, 1, ""])
+                print(f"  {layer} 2 threads ({policy.lower() or 'default'}) / 1 thread: {ratio:.2f}")
 
 
 if __name__ == "__main__":

@@ -15,7 +15,31 @@ The engines import only the kernel layer, the RNG, schema/errors and derive's pl
 (tests/test_layers.py). ``import fricgen`` itself loads nothing but the error family.
 """
 
+import ctypes
+import importlib.metadata
 import os
+
+
+def _load_tbb() -> None:
+    """Put Intel TBB where Numba finds it. Numba takes the first threading layer it can load: TBB
+    (work stealing), then OpenMP. Beside a busy process, OpenMP's barriers make 2 threads slower than
+    1 (0.5x), TBB's stolen work keeps them near 1 thread (0.93x) and ahead on a quiet machine
+    (benchmarks/contention.py). The tbb wheel puts libtbb into the environment's lib/, where the
+    loader does not look: load it globally, so Numba's TBB layer links against it."""
+    try:
+        files = importlib.metadata.files("tbb") or []
+    except importlib.metadata.PackageNotFoundError:
+        return
+    for file in files:
+        if file.name in ("libtbb.so.12", "libtbb.12.dylib"):
+            try:
+                ctypes.CDLL(str(file.locate()), mode=ctypes.RTLD_GLOBAL)
+            except OSError:  # Numba falls back to OpenMP or its work queue
+                pass
+            return
+
+
+_load_tbb()
 
 #: The default thread count is the number of CPUs this process may use (its affinity), not the
 #: machine's; a user's own NUMBA_NUM_THREADS wins, and it acts only when fricgen is imported before
