@@ -28,11 +28,15 @@ from ..langevin.trajectory import GSDWriter, load_checkpoint, save_checkpoint, t
 from ..schema import differences
 from .build import build
 from .config import OBSERVABLES, RunConfig, load_config, parse_override, resolve_source
+from .mips import Frame, run_mips
 from .observables import Periodic, observable_table, read_table, series_summary, truncate_table
 from .outputs import check_folder, dumps
+from .plots import profiles_figure
+from .poiseuille import fit_slit_run, frame_errors
 from .progress import ProgressBar, RunInterrupted, StopOnInterrupt
 
 CHECKPOINT, TRAJECTORY, SUMMARY, CONFIG = "checkpoint.npz", "trajectory.gsd", "summary.json", "config.json"
+PROFILES = "profiles.png"  # the velocity and spin profiles of a slit run, with the Stokes fit
 RUN_FILES = (CHECKPOINT, TRAJECTORY, SUMMARY, CONFIG, *(f"{name}.csv" for name in OBSERVABLES))
 
 
@@ -193,7 +197,28 @@ def summarize(config: RunConfig, simulation: Simulation, folder: Path, seconds: 
                 profile[label] = [s["mean"] for s in slabs]
                 profile[f"{label}_err"] = [s["error"] for s in slabs]
             summary["velocity_profile"] = profile
+            if config.walls is not None and config.bulk.vector[0]:  # a slit flow: the Stokes fit (F-43) and profiles.png
+                frames = rows[:, [header.index(f"vx_{j}") for j in range(bins)]]
+                summary["poiseuille"] = _poiseuille(config, summary["n"], profile, width, frames, folder / PROFILES)
+    if config.active.force != 0 and state.dim == 2:  # active discs: MIPS from the frames after equilibrate
+        mobile = particles.mobile
+        final = Frame(state.position[mobile, :2], particles.radius[mobile], tuple(state.box[:2].tolist()))
+        summary["mips"] = run_mips(folder, folder / TRAJECTORY, final, state.step, config.run.equilibrate)
     return summary
+
+
+def _poiseuille(config: RunConfig, n: int, profile: dict, width: float, frames: np.ndarray, figure: Path) -> dict:
+    """The slit fit of the profile as a dict ({"error": why} when it cannot be fitted), with the errors
+    from the per-frame fits (``frames``: v_x per bin and row), and its figure."""
+    try:
+        fit = fit_slit_run(config, n, profile, width)
+    except ConfigError as error:
+        fit, result = None, {"error": str(error)}
+    else:
+        errors = frame_errors(fit, profile["y"], [np.nan if e is None else e for e in profile["v_x_err"]], frames)
+        result = fit.as_dict() | dict(zip(("eta_err_frames", "slip_err_frames"), errors))
+    profiles_figure(profile, fit, figure)
+    return result
 
 
 def _describe(summary: dict, folder: Path) -> str:
@@ -202,6 +227,14 @@ def _describe(summary: dict, folder: Path) -> str:
         if key in summary and summary[key]["mean"] is not None:
             error = summary[key]["error"]
             lines.append(f"  {key} = {summary[key]['mean']:.4f}" + (f" +- {error:.4f}" if error is not None else ""))
+    if summary.get("mips", {}).get("phase_separated") is not None:
+        m = summary["mips"]
+        phases = f"phase separated: dilute phi = {m['phi_dilute']:.3f}, dense phi = {m['phi_dense']:.3f}" if m["phase_separated"] else "no"
+        lines.append(f"  MIPS ({m['frames']} frames): {phases}; local_density.png")
+    fit = summary.get("poiseuille", {})
+    if "eta" in fit:
+        eta, slip = (f"{fit[key]:.4g} +- {fit[f'{key}_err']:.2g} (frames: {fit[f'{key}_err_frames']:.2g})" for key in ("eta", "slip"))
+        lines.append(f"  Stokes fit (F-43): eta = {eta}, b = {slip}, chi2/dof = {fit['reduced_chi2']:.2f}; {PROFILES}")
     files = sorted(p.name for p in folder.iterdir() if p.name in RUN_FILES)
     lines.append(f"  outputs in {folder}: {', '.join(files)}")
     return "\n".join(lines)
