@@ -68,7 +68,8 @@ def main() -> None:
                 competitor.join()
         print("with one competing busy process:" if busy else "quiet machine:")
         for (layer, threads, policy), values in rates.items():
-            print(f"  {layer:3s} {threads} thread(s) {policy or 'default':7s}: median {statistics.median(values) / 1e6:.2f} M particle-steps/s")
+            figure = statistics.median(values) / 1e6
+            print(f"  {layer:3s} {threads} thread(s) {policy or 'default':7s}: median {figure:.2f} M particle-steps/s")
         for layer, threads, policy in SETUPS:
             if threads == 2:
                 ratio = statistics.median(rates[layer, 2, policy]) / statistics.median(rates[layer, 1, ""])
