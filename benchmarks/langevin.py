@@ -98,8 +98,7 @@ def main() -> None:
                 one = statistics.median(ours[(dim, name), 1]) / statistics.median(theirs[peer, "np1"])
                 two = statistics.median(ours[(dim, name), 2]) / max(statistics.median(theirs[peer, h]) for h in ("np2", "omp2"))
                 print(f"  fricgen {dim}-D {name:12s} / LAMMPS {peer:2s}: 1 core {one:.2f}, 2 cores {two:.2f}")
-    large = simulation(2, 10 * N, EQUILIBRATE // 2)
-    small = sims[2, "pairwise"]
+    large, small = simulation(2, 10 * N, EQUILIBRATE // 2), simulation(2, N, EQUILIBRATE // 2)  # equally far from the lattice
     per_small = statistics.median([1 / rate(small, 1, 200) for _ in range(3)])
     per_large = statistics.median([1 / rate(large, 1, 50) for _ in range(3)])
     print(f"cost per particle-step, 2-D pairwise, 1 thread: N = 10^4 {1e9 * per_small:.0f} ns, 10^5 {1e9 * per_large:.0f} ns "
