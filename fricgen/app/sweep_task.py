@@ -70,8 +70,6 @@ def run_point(spec: dict) -> dict:
     folder.mkdir(parents=True, exist_ok=True)
     clock = time.perf_counter()
     with open(folder / LOG, "a") as log:
-        log.write(f"# {time.strftime('%Y-%m-%d %H:%M:%S')} on {socket.gethostname()}, worker pid {os.getpid()}\n")
-        log.flush()
         child = subprocess.run(
             [sys.executable, "-m", __name__, json.dumps({**spec, "parent": os.getpid()})],
             stdout=log,
@@ -105,12 +103,22 @@ def _lock(folder: Path):
         yield
 
 
+def _begin_attempt(folder: Path, worker: int) -> None:
+    """The attempt's first line in run.log, ``# date on host, worker pid``, written under the lock (an
+    earlier attempt has exited) and on a line of its own (a stopped progress bar ends mid-line)."""
+    with open(folder / LOG, "rb+") as log:
+        fresh_line = log.seek(0, os.SEEK_END) == 0 or (log.seek(-1, os.SEEK_END) >= 0 and log.read(1) == b"\n")
+        log.write(b"" if fresh_line else b"\n")
+        log.write(f"# {time.strftime('%Y-%m-%d %H:%M:%S')} on {socket.gethostname()}, worker pid {worker}\n".encode())
+
+
 def _child(spec: dict) -> int:
     from .cli import main
 
     _watch(spec["parent"])
     folder = Path(spec["folder"])
     with _lock(folder):
+        _begin_attempt(folder, spec["parent"])
         state = folder_state(folder, spec["steps"])
         print(f"fricgen sweep: point {spec['name']}: {state}", flush=True)
         if state == "done":

@@ -143,11 +143,11 @@ def test_a_coarse_quadrature_is_caught_by_kernel_accuracy(laws, monkeypatch):
 
 
 def test_a_wrong_erfcx_is_caught_by_kernel_accuracy(laws, monkeypatch, tmp_path):
-    """The continued fraction of generated/special.py's erfcx cut to 2 terms: wrong for large u."""
+    """The convergent of generated/special.py's erfcx cut to its lowest 3 powers of x^2: wrong for large u."""
     source = modules.SPECIAL_SOURCE.read_text()
-    assert "terms = 20 if x < 10.0 else 10" in source
+    assert "y, top = x * x, len(_NUMERATOR) - 1" in source
     broken = tmp_path / "special.py"
-    broken.write_text(source.replace("terms = 20 if x < 10.0 else 10", "terms = 2"))
+    broken.write_text(source.replace("y, top = x * x, len(_NUMERATOR) - 1", "y, top = x * x, 2"))
     monkeypatch.setattr(modules, "SPECIAL_SOURCE", broken)
     report = verify(derive_noise(laws["coulomb"], "ito"))
     assert failed(report) == {"kernel_accuracy"}, report.checks
