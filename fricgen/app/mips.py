@@ -78,6 +78,14 @@ CRITERION = (
 )
 
 
+def too_small(box: tuple[float, float], kernel: float) -> str | None:
+    """Why a box is too small for the kernel (not over 8 widths on a side: the cut kernel would see
+    itself through the periodic boundary), or None."""
+    if min(box) > 8 * kernel:
+        return None
+    return f"the box {list(box)} must exceed 8 kernel widths ({8 * kernel:g}) on each side"
+
+
 def local_area_fraction(frame: Frame, kernel: float = KERNEL, spacing: float = SPACING) -> np.ndarray:
     """phi on a grid of round(L / spacing) cells per side (a ValueError for a bad frame or width)."""
     position, radius, box = np.asarray(frame.position, float), np.asarray(frame.radius, float), frame.box
@@ -85,8 +93,8 @@ def local_area_fraction(frame: Frame, kernel: float = KERNEL, spacing: float = S
         raise ValueError(f"need N >= 1 positions (N, 2) and N radii, got {position.shape} and {radius.shape}")
     if not (kernel > 0 and spacing > 0):
         raise ValueError(f"kernel and spacing must be positive, got {kernel} and {spacing}")
-    if not min(box) > 8 * kernel:
-        raise ValueError(f"the box {list(box)} must exceed 8 kernel widths ({8 * kernel:g}) on each side")
+    if reason := too_small(box, kernel):
+        raise ValueError(reason)
     points = np.zeros((len(position), 3))
     points[:, :2] = position[:, :2]
     cells = [max(8, round(length / spacing)) for length in box]
@@ -172,8 +180,8 @@ def run_mips(folder: Path, trajectory: Path, final: Frame, step: int, first_step
     at steps >= ``first_step`` (the averaging window, at most the last ``last``) and the final state
     when it is not the last frame (or when there is no trajectory). A box under 8 kernel widths gets
     ``phase_separated`` None and the reason, and no figure."""
-    if min(final.box) <= 8 * KERNEL:
-        return {"phase_separated": None, "criterion": CRITERION, "reason": f"box {list(final.box)} under 8 kernel widths ({8 * KERNEL:g})"}
+    if reason := too_small(final.box, KERNEL):
+        return {"phase_separated": None, "criterion": CRITERION, "reason": reason}
     frames, steps = read_frames(trajectory, last, first_step) if trajectory.exists() else ([], [])
     if not steps or steps[-1] != step:
         frames, steps = [*frames, final][-last:], [*steps, step][-last:]
