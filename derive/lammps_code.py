@@ -6,10 +6,12 @@ Every kernel has the signature of its Numba twin, ``double name(double u, double
 double *params)`` etc., with ``params`` in the order of the law's parameters, and lives in an
 anonymous namespace of the pair style's .cpp file (two plugins loaded together never share a
 symbol). The hand-written numerics, erfcx and the counter-based normals of fricgen.rng, are
-:data:`SUPPORT`; :mod:`derive.lammps_module` assembles the files.
+:func:`support`; :mod:`derive.lammps_module` assembles the files.
 """
 
 from __future__ import annotations
+
+from string import Template
 
 import sympy as sp
 from sympy.integrals.quadrature import gauss_legendre
@@ -18,6 +20,7 @@ from sympy.printing.cxx import CXX17CodePrinter
 from .kernel_code import zero_speed_guard, zero_speed_limit, zero_speed_note
 from .laws import FrictionLaw
 from .noise import NoiseModel, switches
+from .numeric_check import special_namespace
 from .potentials import PAIR_POTENTIALS, Potential
 from .printer import compact, cut, equation, fold_constants, stabilize
 from .symbols import s, u
@@ -291,7 +294,7 @@ def tail_kernels(order: int, count: int) -> str:
 
 # --- hand-written numerics -------------------------------------------------------------------------
 
-SUPPORT = """// x^n for n >= 1 by repeated squaring (integer powers of the printed formulas).
+SUPPORT = Template("""// x^n for n >= 1 by repeated squaring (integer powers of the printed formulas).
 inline double fricgen_powi(double x, int n)
 {
   double result = 1.0;
@@ -304,16 +307,38 @@ inline double fricgen_powi(double x, int n)
 }
 
 // Scaled complementary error function exp(x^2) erfc(x) (derive/kernel_sources/special.py, step for step):
-// directly for 0 <= x < 4, Laplace's continued fraction beyond (20 terms below x = 10, 10 above),
-// erfcx(-x) = 2 exp(x^2) - erfcx(x).
+// on 0 <= x < 4 the degree-12 piece of width 1/4 that holds x (derive/erfcx_pieces.py) by Estrin's
+// scheme, Laplace's continued fraction beyond as its 20-term convergent, erfcx(-x) = 2 exp(x^2) - erfcx(x).
+const double ERFCX_PIECES[${pieces}][${terms}] = {
+${table}
+};
+const double ERFCX_NUMERATOR[] = {${numerator}};
+const double ERFCX_DENOMINATOR[] = {${denominator}};
+
+inline double fricgen_erfcx_right(double x)
+{
+  if (x < 4.0) {
+    const int j = static_cast<int>(4.0 * x);
+    const double *c = ERFCX_PIECES[j];
+    const double t = x - 0.25 * j - 0.125, t2 = t * t, t4 = t2 * t2;
+    const double low = (c[0] + c[1] * t) + (c[2] + c[3] * t) * t2 + ((c[4] + c[5] * t) + (c[6] + c[7] * t) * t2) * t4;
+    return low + ((c[8] + c[9] * t) + (c[10] + c[11] * t) * t2 + c[12] * t4) * (t4 * t4);
+  }
+  if (x > 1e8) return 1.0 / (1.7724538509055160273 * x);
+  const int top = ${top};
+  const double y = x * x;
+  double numerator = ERFCX_NUMERATOR[top], denominator = ERFCX_DENOMINATOR[top];
+  for (int j = top - 1; j >= 0; --j) {
+    numerator = numerator * y + ERFCX_NUMERATOR[j];
+    denominator = denominator * y + ERFCX_DENOMINATOR[j];
+  }
+  return numerator / (1.7724538509055160273 * x * denominator);
+}
+
 inline double fricgen_erfcx(double x)
 {
-  if (x < 0.0) return 2.0 * std::exp(x * x) - fricgen_erfcx(-x);
-  if (x < 4.0) return std::exp(x * x) * std::erfc(x);
-  const int terms = x < 10.0 ? 20 : 10;
-  double t = x;
-  for (int k = terms; k > 0; --k) t = x + 0.5 * k / t;
-  return 1.0 / (1.7724538509055160273 * t);
+  if (x < 0.0) return 2.0 * std::exp(x * x) - fricgen_erfcx_right(-x);
+  return fricgen_erfcx_right(x);
 }
 
 // Counter-based normals of fricgen/rng.py: chained SplitMix64 finalisers (Steele, Lea, Flood 2014)
@@ -345,4 +370,18 @@ inline void normal_pair_at(uint64_t base, uint64_t i, uint64_t k, uint64_t count
   z0 = radius * std::cos(2.0 * 3.141592653589793 * u2);
   z1 = radius * std::sin(2.0 * 3.141592653589793 * u2);
 }
-"""
+""")
+
+
+def support() -> str:
+    """The hand-written numerics in C++, with the tables of generated.special."""
+    special = special_namespace()
+    pieces = special["_PIECES"]
+    return SUPPORT.substitute(
+        pieces=str(pieces.shape[0]),
+        terms=str(pieces.shape[1]),
+        table=",\n".join("  {" + ", ".join(repr(float(c)) for c in row) + "}" for row in pieces),
+        numerator=", ".join(repr(c) for c in special["_NUMERATOR"]),
+        denominator=", ".join(repr(c) for c in special["_DENOMINATOR"]),
+        top=str(len(special["_NUMERATOR"]) - 1),
+    )

@@ -27,7 +27,7 @@ from string import Template
 from .calculus import velocity_verlet_refusal
 from .errors import DeriveError
 from .kernel_code import header
-from .lammps_code import SUPPORT, law_kernels, potential_kernels, wca
+from .lammps_code import law_kernels, potential_kernels, support, wca
 from .lammps_pair import HEADER, PLUGIN, PLUGIN_ABI, SOURCE
 from .laws import FrictionLaw
 from .noise import NoiseModel
@@ -78,7 +78,7 @@ def _source(law: FrictionLaw, model: NoiseModel, fields: dict[str, str]) -> str:
         "epsilon_index": str(names.index("epsilon") if "epsilon" in names else -1),
         "sigma_index": str(names.index("sigma") if "sigma" in names else -1),
         "has_weight": "true" if law.weight is not None else "false",
-        "support": SUPPORT,
+        "support": support(),
         "potential": potential_kernels(wca()),
         "verified": f"{model.calculus.value}, {'closed form' if model.closed_form else 'integral (F-22), quadrature'}",
         "kernels": law_kernels(law, model, QUADRATURE_ORDER),

@@ -72,14 +72,18 @@ def execute(source: str, modules: dict[str, object]) -> dict:
     return namespace
 
 
+def special_namespace() -> dict:
+    """derive/kernel_sources/special.py (generated.special) run as plain Python: its functions and tables."""
+    return execute(modules.SPECIAL_SOURCE.read_text(), {"math": math, "numba": _Numba(), "numpy": importlib.import_module("numpy")})
+
+
 def python_kernels(model: NoiseModel) -> dict:
     """The namespace of the law module that derive.modules prints for ``model`` (as generate writes
     it), run as plain Python."""
 
-    fake = _Numba()
     special = types.ModuleType("special")
-    special.__dict__.update(execute(modules.SPECIAL_SOURCE.read_text(), {"math": math, "numba": fake}))
-    imports = {"math": math, "numba": fake, "..special": special}
+    special.__dict__.update(special_namespace())
+    imports = {"math": math, "numba": _Numba(), "..special": special}
     source = modules.law_module(model.law, {model.calculus.value: model}, "", "derive.verification")
     if "numpy" in source:  # generated code may use numpy (tests/test_layers.py); loaded only when it does
         imports["numpy"] = importlib.import_module("numpy")

@@ -14,7 +14,7 @@ limit u -> 0+ where finite (viscous laws) and 0 otherwise (static friction: no f
 import math
 import numba
 
-from ..special import erfcx  # special.py 2a11ed247b135e21
+from ..special import erfcx  # special.py e373a74cb9f046c3
 
 LAW = 'coulomb'
 SOURCE_HASH = 'da0bc075f43b346b697d28d45c1fda9f818adc3224b7ded93fdcdebaa18e8139'

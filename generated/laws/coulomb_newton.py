@@ -14,7 +14,7 @@ limit u -> 0+ where finite (viscous laws) and 0 otherwise (static friction: no f
 import math
 import numba
 
-from ..special import erfcx  # special.py 2a11ed247b135e21
+from ..special import erfcx  # special.py e373a74cb9f046c3
 
 LAW = 'coulomb_newton'
 SOURCE_HASH = '14668b30bb21bc50a0b11099db488a46bb861d413e314c79cf2c9705c45c547d'

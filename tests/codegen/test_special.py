@@ -2,16 +2,29 @@
 
 from fractions import Fraction
 
+import mpmath
 import numpy as np
 from scipy.special import erfcx as reference
 
-from generated.special import _DENOMINATOR, _NUMERATOR, erfcx
+from derive.erfcx_pieces import erfcx_pieces
+from generated.special import _DENOMINATOR, _NUMERATOR, _PIECES, erfcx
 
 
 def test_erfcx_matches_scipy():
     xs = np.concatenate([-np.geomspace(1e-10, 25, 200), [0.0], np.geomspace(1e-10, 1e300, 2000), np.linspace(0, 10, 1001)])
     got = np.array([erfcx(x) for x in xs])
     np.testing.assert_allclose(got, reference(xs), rtol=2e-15)
+
+
+def test_the_pieces_are_within_two_ulp_of_the_exact_function():
+    xs = np.random.default_rng(5).uniform(0.0, 4.0, 3000)
+    with mpmath.workdps(40):
+        exact = np.array([float(mpmath.exp(mpmath.mpf(x) ** 2) * mpmath.erfc(mpmath.mpf(x))) for x in xs])
+    assert np.max(np.abs(np.array([erfcx(x) for x in xs]) / exact - 1)) <= 2 * np.finfo(float).eps
+
+
+def test_the_pieces_are_derives_chebyshev_interpolants():
+    assert _PIECES.tolist() == erfcx_pieces()
 
 
 def test_erfcx_has_the_asymptote_and_no_overflow():
