@@ -144,7 +144,7 @@ def mode_step(x, w, r, mu, dyn, params, law):
     """The proposal from the mode x = u_perp . (e1 + i e2) (module docstring): returns (f/u, m, s2, g)
     with y = x + (e^(g W) - 1) / g, W = m + sqrt(s2) (xi1 + i xi2), g the conjugate of grad ln sqrt(D)."""
     contact, slope, theta, kT, dt = law[0], law[1], THETA[dyn.scheme], dyn.kT, dyn.dt
-    u = math.sqrt(x.real * x.real + x.imag * x.imag)
+    u = abs(x.real) if dyn.dims == 2 else math.sqrt(x.real * x.real + x.imag * x.imag)
     ratio, root = contact(u, w, r, mu, kT, params)
     amplitude = root * root
     if theta == 1.0:  # D'/u with D = f/u
@@ -163,9 +163,9 @@ def mode_step(x, w, r, mu, dyn, params, law):
 
 
 @numba.njit(inline="always", cache=True)
-def _log_proposal(xi, g_w, dims):
-    """log q(y|x) + (dims - 1) log(sqrt(s2)) + const for the standard normal xi and g W of the move."""
-    return -0.5 * (xi.real * xi.real + xi.imag * xi.imag) - (dims - 1) * g_w.real
+def _log_proposal(xi2, g_w, dims):
+    """log q(y|x) + (dims - 1) log(sqrt(s2)) + const for |xi|^2 of the standard normal xi and g W of the move."""
+    return -0.5 * xi2 - (dims - 1) * g_w.real
 
 
 @numba.njit(inline="always", cache=True)
@@ -182,14 +182,14 @@ def _tangents(nx, ny, nz, dims):
 
 
 @numba.njit(inline="always", cache=True)
-def _propose(x, w, r, mu, dyn, params, law, key, pair):
+def _propose(x, w, r, mu, dyn, params, law, key, i, k):
     """(y, 1 - min(1, alpha)) of the Metropolis–Hastings move of the mode from x; y = x if the move
     leaves the map's principal strip (a proposal to stay) or D = 0."""
     dims, kT = dyn.dims, dyn.kT
     _, m, s2, g = mode_step(x, w, r, mu, dyn, params, law)
     if not s2 > 0.0:
         return x, 0.0
-    key = pair_key(key, pair[0], pair[1])  # draws 0 and 1: the normals, 2: the uniform
+    key = pair_key(key, i, k)  # draws 0 and 1: the normals, 2: the uniform
     xi = complex(ziggurat_normal(key, 0), ziggurat_normal(key, 1) if dims == 3 else 0.0)
     move = m + math.sqrt(s2) * xi
     g_w = g * move
@@ -202,7 +202,9 @@ def _propose(x, w, r, mu, dyn, params, law, key, pair):
         return x, 1.0
     back = _log1p(z, dims) * _inverse(g_back) if g_back != 0.0 else x - y
     log_alpha = (x.real * x.real + x.imag * x.imag - y.real * y.real - y.imag * y.imag) / (2.0 * mu * kT)
-    log_alpha += _log_proposal((back - m_back) * (1.0 / math.sqrt(s2_back)), g_back * back, dims) - _log_proposal(xi, g_w, dims)
+    shift = back - m_back
+    xi2_back = (shift.real * shift.real + shift.imag * shift.imag) / s2_back
+    log_alpha += _log_proposal(xi2_back, g_back * back, dims) - _log_proposal(xi.real * xi.real + xi.imag * xi.imag, g_w, dims)
     log_alpha += 0.5 * (dims - 1) * math.log(s2 / s2_back)
     if log_alpha >= 0.0:
         return y, 0.0
@@ -213,12 +215,12 @@ def _propose(x, w, r, mu, dyn, params, law, key, pair):
 
 
 @numba.njit(inline="always", cache=True)
-def update_pair(motion, bodies, dyn, params, law, key, pair, geometry):
-    """One pair's step (module docstring) on motion.velocity and motion.omega in place; returns
+def update_pair(motion, bodies, dyn, params, law, key, pairs, geometry, p):
+    """Pair p's step (module docstring) on motion.velocity and motion.omega in place; returns
     (the proposal's rejection probability 1 - min(1, alpha), rejected)."""
     vel, omega, radius = motion.velocity, motion.omega, bodies.radius
-    i, k = pair[0], pair[1]
-    nx, ny, nz, r, w, mu = geometry[0], geometry[1], geometry[2], geometry[3], geometry[4], geometry[5]
+    i, k = pairs[p, 0], pairs[p, 1]
+    nx, ny, nz, r, w, mu = geometry[p, 0], geometry[p, 1], geometry[p, 2], geometry[p, 3], geometry[p, 4], geometry[p, 5]
     ri, rk = radius[i], radius[k]
     # u_perp = P (v_k - v_i) - (R_i w_i + R_k w_k) x n   (F-4), as x = u_perp . (e1 + i e2): P drops out
     wx, wy, wz = ri * omega[i, 0] + rk * omega[k, 0], ri * omega[i, 1] + rk * omega[k, 1], ri * omega[i, 2] + rk * omega[k, 2]
@@ -228,7 +230,7 @@ def update_pair(motion, bodies, dyn, params, law, key, pair, geometry):
     x = complex(ux * ax + uy * ay + uz * az, ux * bx + uy * by + uz * bz)
     rejection, rejected = 0.0, False
     if dyn.noise:
-        y, rejection = _propose(x, w, r, mu, dyn, params, law, key, pair)
+        y, rejection = _propose(x, w, r, mu, dyn, params, law, key, i, k)
         rejected = y == x and rejection > 0.0
     else:
         y = x * math.exp(-mu * mode_step(x, w, r, mu, dyn, params, law)[0] * dyn.dt)
@@ -257,7 +259,7 @@ def _sweep(motion, bodies, dyn, params, law, key, pairs, geometry, classes):
     for colour in range(first.size - 1):
         for j in numba.prange(first[colour], first[colour + 1]):
             p = order[j]
-            rejection[p], rejected[p] = update_pair(motion, bodies, dyn, params, law, key, pairs[p], geometry[p])
+            rejection[p], rejected[p] = update_pair(motion, bodies, dyn, params, law, key, pairs, geometry, p)
     return rejection, rejected
 
 

@@ -59,8 +59,8 @@ def rotate(q, wx, wy, wz, dt):
     q1 = a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2
     q2 = a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1
     q3 = a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0
-    norm = math.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
-    q[0], q[1], q[2], q[3] = q0 / norm, q1 / norm, q2 / norm, q3 / norm
+    scale = 1.0 / math.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
+    q[0], q[1], q[2], q[3] = q0 * scale, q1 * scale, q2 * scale, q3 * scale
 
 
 @numba.njit(inline="always", cache=True)
