@@ -62,21 +62,21 @@ def find_contacts(pos, bodies, dyn, couplings, weight, lists, touching):
         for slot in range(start[i], start[i + 1]):
             count += touching[slot]
         first[i + 1] = first[i] + count
-    pairs, geometry = np.empty((first[size], 2), dtype=np.int64), np.zeros((first[size], GEOMETRY))
+    pairs, geometry = np.empty((first[size], 2), dtype=np.int64), np.empty((first[size], GEOMETRY))
     for i in numba.prange(size):
         p = first[i]
         for slot in range(start[i], start[i + 1]):
             if not touching[slot]:
                 continue
             k = neighbors[slot]
-            out = geometry[p]
-            for a in range(dims):
-                out[a] = minimum_image(pos[k, a] - pos[i, a], box[a], inv_box[a])
-            r = math.sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2])
+            dx = minimum_image(pos[k, 0] - pos[i, 0], box[0], inv_box[0])
+            dy = minimum_image(pos[k, 1] - pos[i, 1], box[1], inv_box[1])
+            dz = minimum_image(pos[k, 2] - pos[i, 2], box[2], inv_box[2]) if dims == 3 else 0.0
+            r = math.sqrt(dx * dx + dy * dy + dz * dz)
             sigma = radius[i] + radius[k]
-            out[0], out[1], out[2], out[3] = out[0] / r, out[1] / r, out[2] / r, r
-            out[4] = weight(r / sigma, couplings.law) / sigma if couplings.has_weight else 1.0
-            out[5] = inv_mass[i] + inv_mass[k] + radius[i] ** 2 * inv_inertia[i] + radius[k] ** 2 * inv_inertia[k]
+            geometry[p, 0], geometry[p, 1], geometry[p, 2], geometry[p, 3] = dx / r, dy / r, dz / r, r
+            geometry[p, 4] = weight(r / sigma, couplings.law) / sigma if couplings.has_weight else 1.0
+            geometry[p, 5] = inv_mass[i] + inv_mass[k] + radius[i] ** 2 * inv_inertia[i] + radius[k] ** 2 * inv_inertia[k]
             pairs[p, 0], pairs[p, 1] = i, k
             p += 1
     return pairs, geometry

@@ -123,7 +123,6 @@ def advance(motion, bodies, dyn, couplings, pot_force, contact, slope, weight, f
             closest = conservative_forces(pos, bodies, dyn, couplings, pot_force, lists, force, touching)
         if closest < dyn.overlap_limit:
             return OVERLAP, n, builds, proposals, rejections, rejection
-        velocities = (vel, omega)
         if explicit:
             _contact_kick(motion, bodies, dyn, terms, new)
             if dyn.noise and dyn.scheme != _ITO:
@@ -132,14 +131,12 @@ def advance(motion, bodies, dyn, couplings, pot_force, contact, slope, weight, f
                 )
                 gather(bodies.radius, lists, slots, again)
                 _correct(new, bodies, dyn, terms, again)
-            velocities = new
         elif dyn.friction:
             tally = contact_step(motion, bodies, dyn, couplings, (contact, slope, weight), lists, touching, key)
             proposals, rejections, rejection = proposals + tally[0], rejections + tally[1], rejection + tally[2]
-        if not (np.isfinite(velocities[0]).all() and np.isfinite(velocities[1]).all()):
-            return NOT_FINITE, n, builds, proposals, rejections, rejection
         if explicit:
             vel[:] = new[0]
             omega[:] = new[1]
-        half_kick(motion, bodies, dyn, force)
+        if not half_kick(motion, bodies, dyn, force):
+            return NOT_FINITE, n, builds, proposals, rejections, rejection
     return OK, steps, builds, proposals, rejections, rejection

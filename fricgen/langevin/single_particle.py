@@ -40,27 +40,28 @@ def solvent_coefficients(bodies, dyn):
 
 
 @numba.njit(inline="always", cache=True)
-def body_axis(q):
-    """e1 = R(q) (1, 0, 0) for a unit quaternion q = (s, x, y, z)."""
-    s, x, y, z = q[0], q[1], q[2], q[3]
+def body_axis(quat, i):
+    """e1 = R(q) (1, 0, 0) for the unit quaternion q = quat[i] = (s, x, y, z)."""
+    s, x, y, z = quat[i, 0], quat[i, 1], quat[i, 2], quat[i, 3]
     return 1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + s * z), 2.0 * (x * z - s * y)
 
 
 @numba.njit(inline="always", cache=True)
-def rotate(q, wx, wy, wz, dt):
-    """q <- exp(omega dt/2) q: exact rotation by the lab-frame angle omega dt."""
+def rotate(quat, i, wx, wy, wz, dt):
+    """q <- exp(omega dt/2) q for q = quat[i]: exact rotation by the lab-frame angle omega dt. (Indices,
+    not the row quat[i]: a view's reference count costs more than the rotation's arithmetic.)"""
     rate = math.sqrt(wx * wx + wy * wy + wz * wz)
     if rate == 0.0:
         return
     c, s = math.cos(0.5 * rate * dt), math.sin(0.5 * rate * dt) / rate
     a0, a1, a2, a3 = c, s * wx, s * wy, s * wz
-    b0, b1, b2, b3 = q[0], q[1], q[2], q[3]
+    b0, b1, b2, b3 = quat[i, 0], quat[i, 1], quat[i, 2], quat[i, 3]
     q0 = a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3
     q1 = a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2
     q2 = a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1
     q3 = a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0
     scale = 1.0 / math.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
-    q[0], q[1], q[2], q[3] = q0 * scale, q1 * scale, q2 * scale, q3 * scale
+    quat[i, 0], quat[i, 1], quat[i, 2], quat[i, 3] = q0 * scale, q1 * scale, q2 * scale, q3 * scale
 
 
 @numba.njit(inline="always", cache=True)
@@ -75,7 +76,7 @@ def _kick(vel, quat, inv_mass, dyn, force, i):
     """B of particle i: v += (dt/2) (F + F0 e1 + F_bulk) / m. (Arrays, not the records: a parfor
     loses writes into an array taken from a record inside the loop.)"""
     active, bulk = dyn.active, dyn.bulk
-    e0, e1, e2 = body_axis(quat[i]) if active != 0.0 else (0.0, 0.0, 0.0)
+    e0, e1, e2 = body_axis(quat, i) if active != 0.0 else (0.0, 0.0, 0.0)
     scale = 0.5 * dyn.dt * inv_mass[i]
     vel[i, 0] += scale * (force[i, 0] + active * e0 + bulk[0])
     vel[i, 1] += scale * (force[i, 1] + active * e1 + bulk[1])
@@ -85,10 +86,15 @@ def _kick(vel, quat, inv_mass, dyn, force, i):
 
 @numba.njit(parallel=True, cache=True)
 def half_kick(motion, bodies, dyn, force):
-    """B of every particle (the last part of a step)."""
-    vel, quat, inv_mass = motion.velocity, motion.orientation, bodies.inv_mass
+    """B of every particle (the last part of a step); returns whether all velocities and spins are finite."""
+    vel, omega, quat, inv_mass = motion.velocity, motion.omega, motion.orientation, bodies.inv_mass
+    bad = 0
     for i in numba.prange(vel.shape[0]):
         _kick(vel, quat, inv_mass, dyn, force, i)
+        for a in range(3):
+            if not (math.isfinite(vel[i, a]) and math.isfinite(omega[i, a])):
+                bad += 1
+    return bad == 0
 
 
 @numba.njit(parallel=True, cache=True)
@@ -106,7 +112,7 @@ def kick_drift_solvent(motion, bodies, dyn, force, solvent, key, reference):
         _drift(pos, vel, i, dims, box, h)
         spin = omega[i, 2]
         if dims == 3:
-            rotate(quat[i], omega[i, 0], omega[i, 1], omega[i, 2], h)
+            rotate(quat, i, omega[i, 0], omega[i, 1], omega[i, 2], h)
         c, s, cr, sr = solvent[i, DAMP], solvent[i, SPREAD], solvent[i, DAMP_ROT], solvent[i, SPREAD_ROT]
         first = 6 * i
         vel[i, 0] = c * vel[i, 0] + s * ziggurat_normal(key, first)
@@ -116,9 +122,9 @@ def kick_drift_solvent(motion, bodies, dyn, force, solvent, key, reference):
             vel[i, 2] = c * vel[i, 2] + s * ziggurat_normal(key, first + 3)
             omega[i, 0] = cr * omega[i, 0] + sr * ziggurat_normal(key, first + 4)
             omega[i, 1] = cr * omega[i, 1] + sr * ziggurat_normal(key, first + 5)
-            rotate(quat[i], omega[i, 0], omega[i, 1], omega[i, 2], h)
+            rotate(quat, i, omega[i, 0], omega[i, 1], omega[i, 2], h)
         else:
-            rotate(quat[i], 0.0, 0.0, spin + omega[i, 2], h)
+            rotate(quat, i, 0.0, 0.0, spin + omega[i, 2], h)
         _drift(pos, vel, i, dims, box, h)
         d2 = 0.0
         for a in range(dims):
