@@ -54,8 +54,8 @@ def pair_slots(coordinates, bodies, dyn, couplings, pot_force, contact, weight, 
             k = neighbors[slot]
             if k < i:
                 continue
-            out = slots[slot]
-            out[:] = 0.0
+            for j in range(PAIR_FIELDS):
+                slots[slot, j] = 0.0
             if inv_mass[i] == 0.0 and inv_mass[k] == 0.0:
                 continue  # two immobile (wall) particles: no effect, and mu_ik = 0
             dx = minimum_image(pos[k, 0] - pos[i, 0], box[0], inv_box[0])
@@ -72,7 +72,7 @@ def pair_slots(coordinates, bodies, dyn, couplings, pot_force, contact, weight, 
             nx, ny, nz = dx / r, dy / r, dz / r
             if conservative:
                 magnitude = pot_force(r / sigma, couplings.potential) / sigma  # -dU/dr, scaled to sigma_ik
-                out[0], out[1], out[2] = -magnitude * nx, -magnitude * ny, -magnitude * nz
+                slots[slot, 0], slots[slot, 1], slots[slot, 2] = -magnitude * nx, -magnitude * ny, -magnitude * nz
             if not friction_on:
                 continue
             # u_perp = P (v_k - v_i) - (R_i w_i + R_k w_k) x n   (F-4)
@@ -87,19 +87,21 @@ def pair_slots(coordinates, bodies, dyn, couplings, pot_force, contact, weight, 
             w = weight(r / sigma, couplings.law) / sigma if couplings.has_weight else 1.0
             mu = inv_mass[i] + inv_mass[k] + ri * ri * inv_inertia[i] + rk * rk * inv_inertia[k]
             ratio, root = contact(u, w, r, mu, kT, couplings.law)
-            out[3], out[4], out[5] = ratio * ux, ratio * uy, ratio * uz
-            out[6], out[7], out[8] = cross(nx, ny, nz, out[3], out[4], out[5])
+            fx, fy, fz = ratio * ux, ratio * uy, ratio * uz
+            slots[slot, 3], slots[slot, 4], slots[slot, 5] = fx, fy, fz
+            slots[slot, 6], slots[slot, 7], slots[slot, 8] = cross(nx, ny, nz, fx, fy, fz)
             if noise_on:
                 amplitude = root * noise_scale
                 if dims == 3:  # P z: one random tangential force
                     z0, z1 = normal_pair_at(noise_key, i, k, 0)
                     z2 = normal_pair_at(noise_key, i, k, 1)[0]
                     zn = z0 * nx + z1 * ny + z2 * nz
-                    out[9], out[10], out[11] = amplitude * (z0 - zn * nx), amplitude * (z1 - zn * ny), amplitude * (z2 - zn * nz)
+                    jx, jy, jz = amplitude * (z0 - zn * nx), amplitude * (z1 - zn * ny), amplitude * (z2 - zn * nz)
                 else:  # along t = z x n
                     z0 = normal_pair_at(noise_key, i, k, 0)[0]
-                    out[9], out[10] = -amplitude * z0 * ny, amplitude * z0 * nx
-                out[12], out[13], out[14] = cross(nx, ny, nz, out[9], out[10], out[11])
+                    jx, jy, jz = -amplitude * z0 * ny, amplitude * z0 * nx, 0.0
+                slots[slot, 9], slots[slot, 10], slots[slot, 11] = jx, jy, jz
+                slots[slot, 12], slots[slot, 13], slots[slot, 14] = cross(nx, ny, nz, jx, jy, jz)
     return closest.min() if size else np.inf
 
 
@@ -108,11 +110,12 @@ def gather(radius, lists, slots, terms):
     """terms[:, i] = sums over i's pairs in the sorted order of its list (-F and R_k torques for k > i)."""
     start, neighbors, reverse = lists
     for i in numba.prange(radius.size):
-        terms[:, i, :] = 0.0
+        for j in range(TERMS):
+            for a in range(3):
+                terms[j, i, a] = 0.0
         for slot in range(start[i], start[i + 1]):
             source, sign = (slot, 1.0) if neighbors[slot] > i else (reverse[slot], -1.0)
-            values = slots[source]
             for j in range(TERMS):
                 scale = radius[i] if j == 2 or j == 4 else sign  # torques: R_i r_hat x F for both partners
                 for a in range(3):
-                    terms[j, i, a] += scale * values[3 * j + a]
+                    terms[j, i, a] += scale * slots[source, 3 * j + a]
