@@ -39,7 +39,7 @@ import numpy as np
 from derive.calculus import Calculus
 
 from ..rng import pair_key, uniform, ziggurat_normal
-from .neighbors import minimum_image
+from .neighbors import separation
 from .pairs import cross
 
 #: theta of each scheme (Calculus.index): where the calculus evaluates D within a step.
@@ -69,9 +69,7 @@ def find_contacts(pos, bodies, dyn, couplings, weight, lists, touching):
             if not touching[slot]:
                 continue
             k = neighbors[slot]
-            dx = minimum_image(pos[k, 0] - pos[i, 0], box[0], inv_box[0])
-            dy = minimum_image(pos[k, 1] - pos[i, 1], box[1], inv_box[1])
-            dz = minimum_image(pos[k, 2] - pos[i, 2], box[2], inv_box[2]) if dims == 3 else 0.0
+            dx, dy, dz = separation(pos, i, k, box, inv_box, dims)
             r = math.sqrt(dx * dx + dy * dy + dz * dz)
             sigma = radius[i] + radius[k]
             geometry[p, 0], geometry[p, 1], geometry[p, 2], geometry[p, 3] = dx / r, dy / r, dz / r, r

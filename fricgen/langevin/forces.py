@@ -21,16 +21,14 @@ import math
 import numba
 import numpy as np
 
-from .neighbors import minimum_image
+from .neighbors import separation
 from .pairs import WCA_RANGE
 
 
 @numba.njit(inline="always", cache=True)
 def _pair_force(pos, radius, dyn, i, k, pot_force, params):
     """(F_x, F_y, F_z, r / sigma_ik) on i from k, F = 0 beyond the potential's range (r / sigma = inf)."""
-    dx = minimum_image(pos[k, 0] - pos[i, 0], dyn.box[0], dyn.inv_box[0])
-    dy = minimum_image(pos[k, 1] - pos[i, 1], dyn.box[1], dyn.inv_box[1])
-    dz = minimum_image(pos[k, 2] - pos[i, 2], dyn.box[2], dyn.inv_box[2]) if dyn.dims == 3 else 0.0
+    dx, dy, dz = separation(pos, i, k, dyn.box, dyn.inv_box, dyn.dims)
     r2 = dx * dx + dy * dy + dz * dz
     sigma = radius[i] + radius[k]
     reach = WCA_RANGE * sigma

@@ -20,6 +20,15 @@ def minimum_image(d, length, inverse):
 
 
 @numba.njit(inline="always", cache=True)
+def separation(pos, i, k, box, inv_box, dims):
+    """The minimum-image vector r_k - r_i as (dx, dy, dz); dz = 0 in 2-D."""
+    dx = minimum_image(pos[k, 0] - pos[i, 0], box[0], inv_box[0])
+    dy = minimum_image(pos[k, 1] - pos[i, 1], box[1], inv_box[1])
+    dz = minimum_image(pos[k, 2] - pos[i, 2], box[2], inv_box[2]) if dims == 3 else 0.0
+    return dx, dy, dz
+
+
+@numba.njit(inline="always", cache=True)
 def _offsets(n):
     """The distinct neighbour-cell offsets along a direction with n cells: range(first, last + 1)."""
     return (-1, 1) if n >= 3 else (0, min(n - 1, 1))

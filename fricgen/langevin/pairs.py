@@ -17,7 +17,7 @@ import numba
 import numpy as np
 
 from ..rng import normal_pair_at
-from .neighbors import minimum_image
+from .neighbors import separation
 
 WCA_RANGE = 2.0 ** (1.0 / 6.0)
 
@@ -58,9 +58,7 @@ def pair_slots(coordinates, bodies, dyn, couplings, pot_force, contact, weight, 
                 slots[slot, j] = 0.0
             if inv_mass[i] == 0.0 and inv_mass[k] == 0.0:
                 continue  # two immobile (wall) particles: no effect, and mu_ik = 0
-            dx = minimum_image(pos[k, 0] - pos[i, 0], box[0], inv_box[0])
-            dy = minimum_image(pos[k, 1] - pos[i, 1], box[1], inv_box[1])
-            dz = minimum_image(pos[k, 2] - pos[i, 2], box[2], inv_box[2]) if dims == 3 else 0.0
+            dx, dy, dz = separation(pos, i, k, box, inv_box, dims)
             r2 = dx * dx + dy * dy + dz * dz
             rk = radius[k]
             sigma = ri + rk
