@@ -2,8 +2,8 @@
 
 perf cannot name JIT-compiled code by itself; it reads /tmp/perf-PID.map (start, size, name). This
 script compiles the engine afresh (a temporary NUMBA_CACHE_DIR, so that every function's LLVM
-library stays in memory), writes that map from the libraries' function addresses (a function's size
-is taken as the gap to the next address), then samples its own process with `perf record` while it
+library stays in memory), writes that map from the libraries' function addresses and symbol sizes,
+then samples its own process with `perf record` while it
 runs SECONDS of steps, and prints the top of `perf report`. Inlined helpers count towards their
 caller (a parfor's body appears as `__numba_parfor_gufunc...`); libm's exp, expm1, erfc... appear by
 name. System: 2-D, N = 10 000, area fraction 0.6, WCA + solvent + Coulomb–Newton with its noise
@@ -31,21 +31,27 @@ from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, Thermos
 
 
 def perf_map(path: str) -> int:
-    """Write the perf map of every compiled Numba function in this process; returns the count."""
-    names = {}
-    for dispatcher in (obj for obj in gc.get_objects() if isinstance(obj, CPUDispatcher)):
-        for result in list(dispatcher.overloads.values()):
-            module = getattr(result.library, "_final_module", None)
-            for function in module.functions if module is not None else ():
-                if not function.is_declaration:
-                    address = result.library.get_pointer_to_function(function.name)
-                    if address:
-                        names[address] = f"{dispatcher.py_func.__module__}.{dispatcher.py_func.__qualname__}:{function.name[:80]}"
-    starts = sorted(names)
+    """Write the perf map of every compiled Numba function in this process; returns the count. A
+    function's address comes from its library, its size from the symbol table of the library's
+    object code (``nm -S``), so that code outside any known function stays unnamed."""
+    entries = {}
+    with tempfile.TemporaryDirectory() as scratch:
+        for dispatcher in (obj for obj in gc.get_objects() if isinstance(obj, CPUDispatcher)):
+            owner = f"{dispatcher.py_func.__module__}.{dispatcher.py_func.__qualname__}"
+            for result in list(dispatcher.overloads.values()):
+                objfile = os.path.join(scratch, "library.o")
+                with open(objfile, "wb") as out:
+                    out.write(result.library._get_compiled_object())
+                symbols = subprocess.run(["nm", "-S", "--defined-only", objfile], capture_output=True, text=True).stdout
+                for fields in (line.split() for line in symbols.splitlines()):
+                    if len(fields) == 4 and fields[2] in "tTwW" and int(fields[1], 16):
+                        address = result.library.get_pointer_to_function(fields[3])
+                        if address:
+                            entries[address] = (int(fields[1], 16), f"{owner}:{fields[3][:80]}")
     with open(path, "w") as out:
-        for start, end in zip(starts, starts[1:] + [starts[-1] + 4096] if starts else []):
-            out.write(f"{start:x} {min(end - start, 1 << 20):x} {names[start]}\n")
-    return len(starts)
+        for start, (size, name) in sorted(entries.items()):
+            out.write(f"{start:x} {size:x} {name}\n")
+    return len(entries)
 
 
 def main() -> None:

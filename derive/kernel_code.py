@@ -17,7 +17,10 @@ from .noise import branches
 from .printer import KernelPrinter, compact, fold_constants
 from .symbols import u
 
-DECORATOR = '@numba.njit(cache=True, error_model="numpy")'
+#: Every kernel is inlined into the kernels that call it (contact_<c> -> noise_amplitude_<c> ->
+#: _gaussian_tail ...): a compiled call that passes ``params`` on holds a reference to it, two atomic
+#: reference-count operations per call, which cost as much as the arithmetic of a closed-form D.
+DECORATOR = '@numba.njit(cache=True, error_model="numpy", inline="always")'
 #: Explicit signatures: the engines take these kernels as first-class functions (one compiled engine
 #: for every law), which needs each kernel compiled for exactly this signature. They are the kernel
 #: ABI of fricgen.kernels (SCALAR_KERNEL, FRICTION_KERNEL, NOISE_KERNEL, FIELD_KERNEL, CONTACT_KERNEL),
@@ -34,7 +37,7 @@ INDENT = "    "
 
 
 def decorator(args: str, signature: str | None = None) -> str:
-    return f'@numba.njit("{signature or SIGNATURES[args]}", cache=True, error_model="numpy")'
+    return f'@numba.njit("{signature or SIGNATURES[args]}", cache=True, error_model="numpy", inline="always")'
 
 
 def header(lines: list[str]) -> str:

@@ -24,7 +24,8 @@ from .errors import DeriveError
 #: Version of the code generator; part of every source hash, bump when emitted code changes.
 #: 2: RANGES (the parameters' admissible ranges) in law modules; quadrature cut at branch points.
 #: 3: friction_slope (df/du) in law modules, for the Itô drift of the pairwise contact step.
-GENERATOR_VERSION = 3
+#: 4: contact_<c> returns (f/u, D), not (f/u, sqrt D); every kernel inlined into its callers.
+GENERATOR_VERSION = 4
 
 CATALOGUE = Path(__file__).with_name("catalogue")
 #: The source of the potentials (derive.potentials), hashed as bytes by potential_source_hash.

@@ -82,7 +82,7 @@ def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, sou
         f"Kernels of the friction law {law.name}: f = {law.source}.\n\n"
         "Arguments: u tangential speed (>= 0), w weight value w(r), r centre distance, mu contact\n"
         "mobility, kT thermal energy, params parameter values in the order of PARAMETERS.\n"
-        "contact_<calculus> returns (f/u, sqrt(D)); at u = 0 the direction is undefined and f/u is its\n"
+        "contact_<calculus> returns (f/u, D); at u = 0 the direction is undefined and f/u is its\n"
         "limit u -> 0+ where finite (viscous laws) and 0 otherwise (static friction: no force).\n"
     )
     parts = [top, quote_doc(doc) + "\n", "import math\n", "import numba\n"]
@@ -147,12 +147,12 @@ def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, sou
             f"{INDENT}return math.sqrt(noise_amplitude_{c}({args}))\n"
         )
         over_u = short_formula(ratio, FORMULA_LIMIT // 2 - len(amplitude or ""))
-        value = f" = ({over_u}, sqrt({amplitude}))" if amplitude and over_u else ""
-        doc = f"(f/u, sqrt(D)){value} of one contact ({c} calculus): friction_over_u and noise_sqrt_{c} in one call."
+        value = f" = ({over_u}, {amplitude})" if amplitude and over_u else ""
+        doc = f"(f/u, D){value} of one contact ({c} calculus): friction_over_u and noise_amplitude_{c} in one call."
         functions.append(
             f"{_decorator(args, CONTACT_SIGNATURE)}\ndef contact_{c}({args}):\n"
             f"{INDENT}{quote_doc(doc)}\n"
-            f"{INDENT}return friction_over_u(u, w, r, params), noise_sqrt_{c}({args})\n"
+            f"{INDENT}return friction_over_u(u, w, r, params), noise_amplitude_{c}({args})\n"
         )
     code = "".join("\n\n" + f for f in functions)
     if "erfcx(" in code:  # the hash: a new erfcx rewrites this file, so Numba's cache (which tracks only its date) recompiles it

@@ -8,7 +8,7 @@ first-class functions of these types, so one compiled engine serves every law an
 - ``FRICTION_KERNEL``: ``friction(u, w, r, params)``, ``friction_over_u(u, w, r, params)`` and
   ``friction_slope(u, w, r, params)`` = df/du;
 - ``NOISE_KERNEL``: ``noise_amplitude_<c>(u, w, r, mu, kT, params)`` and ``noise_sqrt_<c>(...)``;
-- ``CONTACT_KERNEL``: ``contact_<c>(u, w, r, mu, kT, params)`` -> ``(f/u, sqrt(D))``;
+- ``CONTACT_KERNEL``: ``contact_<c>(u, w, r, mu, kT, params)`` -> ``(f/u, D)``;
 - ``FIELD_KERNEL``: ``force_field(xs, params, out)`` of an external potential (out[i] = force(xs[i])).
 
 ``params`` is a contiguous float64 array. :func:`no_weight` is the weight of laws without one.
@@ -56,7 +56,7 @@ SCALAR_KERNEL = types.FunctionType(_F(_F, _V))
 FRICTION_KERNEL = types.FunctionType(_F(_F, _F, _F, _V))
 #: noise_amplitude_<c>(u, w, r, mu, kT, params) -> D, noise_sqrt_<c>(...) -> sqrt(D).
 NOISE_KERNEL = types.FunctionType(_F(_F, _F, _F, _F, _F, _V))
-#: contact_<c>(u, w, r, mu, kT, params) -> (f/u, sqrt(D)).
+#: contact_<c>(u, w, r, mu, kT, params) -> (f/u, D).
 CONTACT_KERNEL = types.FunctionType(types.UniTuple(_F, 2)(_F, _F, _F, _F, _F, _V))
 #: force_field(xs, params, out): out[i] = force(xs[i], params).
 FIELD_KERNEL = types.FunctionType(types.void(_V, _V, _V))
@@ -138,7 +138,7 @@ class LawKernels:
         return getattr(self.module, f"noise_sqrt_{self._calculus(calculus)}")
 
     def contact(self, calculus: str):
-        """(f/u, sqrt(D))(u, w, r, mu, kT, p) for the calculus."""
+        """(f/u, D)(u, w, r, mu, kT, p) for the calculus."""
         return getattr(self.module, f"contact_{self._calculus(calculus)}")
 
     @property

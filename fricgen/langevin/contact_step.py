@@ -56,6 +56,7 @@ def find_contacts(pos, bodies, dyn, couplings, weight, lists, touching):
     radius, inv_mass, inv_inertia = bodies
     start, neighbors = lists[0], lists[1]
     box, inv_box, dims, size = dyn.box, dyn.inv_box, dyn.dims, pos.shape[0]
+    law = couplings.law  # bound here: taken from the tuple in the loop, each weight call would cost two atomic reference counts
     first = np.zeros(size + 1, dtype=np.int64)
     for i in range(size):
         count = 0
@@ -73,7 +74,7 @@ def find_contacts(pos, bodies, dyn, couplings, weight, lists, touching):
             r = math.sqrt(dx * dx + dy * dy + dz * dz)
             sigma = radius[i] + radius[k]
             geometry[p, 0], geometry[p, 1], geometry[p, 2], geometry[p, 3] = dx / r, dy / r, dz / r, r
-            geometry[p, 4] = weight(r / sigma, couplings.law) / sigma if couplings.has_weight else 1.0
+            geometry[p, 4] = weight(r / sigma, law) / sigma if couplings.has_weight else 1.0
             geometry[p, 5] = inv_mass[i] + inv_mass[k] + radius[i] ** 2 * inv_inertia[i] + radius[k] ** 2 * inv_inertia[k]
             pairs[p, 0], pairs[p, 1] = i, k
             p += 1
@@ -143,8 +144,7 @@ def mode_step(x, w, r, mu, dyn, params, law):
     with y = x + (e^(g W) - 1) / g, W = m + sqrt(s2) (xi1 + i xi2), g the conjugate of grad ln sqrt(D)."""
     contact, slope, theta, kT, dt = law[0], law[1], THETA[dyn.scheme], dyn.kT, dyn.dt
     u = abs(x.real) if dyn.dims == 2 else math.sqrt(x.real * x.real + x.imag * x.imag)
-    ratio, root = contact(u, w, r, mu, kT, params)
-    amplitude = root * root
+    ratio, amplitude = contact(u, w, r, mu, kT, params)
     if theta == 1.0:  # D'/u with D = f/u
         slope_over_u = (slope(u, w, r, params) - ratio) / (u * u) if u > 0.0 else 0.0
     else:
@@ -213,10 +213,13 @@ def _propose(x, w, r, mu, dyn, params, law, key, i, k):
 
 
 @numba.njit(inline="always", cache=True)
-def update_pair(motion, bodies, dyn, params, law, key, pairs, geometry, p):
-    """Pair p's step (module docstring) on motion.velocity and motion.omega in place; returns
-    (the proposal's rejection probability 1 - min(1, alpha), rejected)."""
-    vel, omega, radius = motion.velocity, motion.omega, bodies.radius
+def update_pair(vel, omega, bodies, dyn, params, law, key, pairs, geometry, p):
+    """Pair p's step (module docstring) on the velocities ``vel`` and spins ``omega`` in place; returns
+    (the proposal's rejection probability 1 - min(1, alpha), rejected). ``vel`` and ``omega`` come
+    as arrays, not in their record, and ``bodies``' arrays are indexed, never bound to a name: an
+    array bound within the pair loop and used after a kernel call costs two atomic reference-count
+    operations per pair."""
+    radius = bodies.radius
     i, k = pairs[p, 0], pairs[p, 1]
     nx, ny, nz, r, w, mu = geometry[p, 0], geometry[p, 1], geometry[p, 2], geometry[p, 3], geometry[p, 4], geometry[p, 5]
     ri, rk = radius[i], radius[k]
@@ -253,11 +256,12 @@ def _sweep(motion, bodies, dyn, params, law, key, pairs, geometry, classes):
     """update_pair for every pair, colour after colour, the pairs of a colour in parallel; returns each
     pair's (rejection probability, rejected)."""
     order, first = classes
+    vel, omega = motion.velocity, motion.omega
     rejection, rejected = np.zeros(pairs.shape[0]), np.zeros(pairs.shape[0], dtype=np.bool_)
     for colour in range(first.size - 1):
         for j in numba.prange(first[colour], first[colour + 1]):
             p = order[j]
-            rejection[p], rejected[p] = update_pair(motion, bodies, dyn, params, law, key, pairs, geometry, p)
+            rejection[p], rejected[p] = update_pair(vel, omega, bodies, dyn, params, law, key, pairs, geometry, p)
     return rejection, rejected
 
 

@@ -26,35 +26,34 @@ from .pairs import WCA_RANGE
 
 
 @numba.njit(inline="always", cache=True)
-def _pair_force(pos, radius, dyn, i, k, pot_force, params):
-    """(F_x, F_y, F_z, r / sigma_ik) on i from k, F = 0 beyond the potential's range (r / sigma = inf)."""
-    dx, dy, dz = separation(pos, i, k, dyn.box, dyn.inv_box, dyn.dims)
+def _pair_reach(pos, i, k, sigma, box, inv_box, dims):
+    """(dx, dy, dz, r) of the pair, r = |r_k - r_i|, or r = inf beyond the potential's range."""
+    dx, dy, dz = separation(pos, i, k, box, inv_box, dims)
     r2 = dx * dx + dy * dy + dz * dz
-    sigma = radius[i] + radius[k]
     reach = WCA_RANGE * sigma
-    if r2 >= reach * reach:
-        return 0.0, 0.0, 0.0, np.inf
-    r = math.sqrt(r2)
-    magnitude = pot_force(r / sigma, params) / sigma  # -dU/dr, scaled to sigma_ik
-    return -magnitude * (dx / r), -magnitude * (dy / r), -magnitude * (dz / r), r / sigma
+    return dx, dy, dz, (math.sqrt(r2) if r2 < reach * reach else np.inf)
 
 
 @numba.njit(cache=True)
-def _each_pair_once(pos, bodies, dyn, pot_force, params, lists, force, touching):
-    start, neighbors = lists[0], lists[1]
+def _each_pair_once(pos, bodies, cell, pot_force, params, lists, force, touching):
+    radius, inv_mass, start, neighbors = bodies.radius, bodies.inv_mass, lists[0], lists[1]
+    box, inv_box, dims = cell
     force[:] = 0.0
     closest = np.inf
     for i in range(pos.shape[0]):
         for slot in range(start[i], start[i + 1]):
             k = neighbors[slot]
             touching[slot] = False
-            if k < i or (bodies.inv_mass[i] == 0.0 and bodies.inv_mass[k] == 0.0):
+            if k < i or (inv_mass[i] == 0.0 and inv_mass[k] == 0.0):
                 continue
-            fx, fy, fz, ratio = _pair_force(pos, bodies.radius, dyn, i, k, pot_force, params)
-            if ratio == np.inf:
+            sigma = radius[i] + radius[k]
+            dx, dy, dz, r = _pair_reach(pos, i, k, sigma, box, inv_box, dims)
+            if r == np.inf:
                 continue
+            magnitude = pot_force(r / sigma, params) / sigma  # -dU/dr, scaled to sigma_ik
+            fx, fy, fz = -magnitude * (dx / r), -magnitude * (dy / r), -magnitude * (dz / r)  # on i from k
             touching[slot] = True
-            closest = min(closest, ratio)
+            closest = min(closest, r / sigma)
             force[i, 0] += fx
             force[i, 1] += fy
             force[i, 2] += fz
@@ -65,24 +64,27 @@ def _each_pair_once(pos, bodies, dyn, pot_force, params, lists, force, touching)
 
 
 @numba.njit(parallel=True, cache=True)
-def _each_particle(pos, bodies, dyn, pot_force, params, lists, force, touching):
-    start, neighbors = lists[0], lists[1]
+def _each_particle(pos, bodies, cell, pot_force, params, lists, force, touching):
+    radius, inv_mass, start, neighbors = bodies.radius, bodies.inv_mass, lists[0], lists[1]
+    box, inv_box, dims = cell
     closest = np.full(pos.shape[0], np.inf)
     for i in numba.prange(pos.shape[0]):
         fx, fy, fz = 0.0, 0.0, 0.0
         for slot in range(start[i], start[i + 1]):
             k = neighbors[slot]
             touching[slot] = False
-            if bodies.inv_mass[i] == 0.0 and bodies.inv_mass[k] == 0.0:
+            if inv_mass[i] == 0.0 and inv_mass[k] == 0.0:
                 continue
-            gx, gy, gz, ratio = _pair_force(pos, bodies.radius, dyn, i, k, pot_force, params)
-            if ratio == np.inf:
+            sigma = radius[i] + radius[k]
+            dx, dy, dz, r = _pair_reach(pos, i, k, sigma, box, inv_box, dims)
+            if r == np.inf:
                 continue
+            magnitude = pot_force(r / sigma, params) / sigma
             touching[slot] = k > i
-            closest[i] = min(closest[i], ratio)
-            fx += gx
-            fy += gy
-            fz += gz
+            closest[i] = min(closest[i], r / sigma)
+            fx += -magnitude * (dx / r)
+            fy += -magnitude * (dy / r)
+            fz += -magnitude * (dz / r)
         force[i, 0], force[i, 1], force[i, 2] = fx, fy, fz
     return closest.min() if pos.shape[0] else np.inf
 
@@ -93,5 +95,8 @@ def conservative_forces(pos, bodies, dyn, couplings, pot_force, lists, force, to
     touching[slot] whether the slot's pair (i < k) is one of them; returns the smallest r / sigma_ik of
     those pairs. ``lists`` = (start, neighbors, reverse)."""
     if dyn.threads == 1:
-        return _each_pair_once(pos, bodies, dyn, pot_force, couplings.potential, lists, force, touching)
-    return _each_particle(pos, bodies, dyn, pot_force, couplings.potential, lists, force, touching)
+        # the box as numbers: arrays passed to the inlined _pair_reach within a serial loop would cost
+        # two atomic reference-count operations per pair (a parallel loop's body is spared them)
+        cell = ((dyn.box[0], dyn.box[1], dyn.box[2]), (dyn.inv_box[0], dyn.inv_box[1], dyn.inv_box[2]), dyn.dims)
+        return _each_pair_once(pos, bodies, cell, pot_force, couplings.potential, lists, force, touching)
+    return _each_particle(pos, bodies, (dyn.box, dyn.inv_box, dyn.dims), pot_force, couplings.potential, lists, force, touching)

@@ -85,7 +85,7 @@ def advance(motion, bodies, dyn, couplings, pot_force, contact, slope, weight, f
     """Advance the motion in place by ``steps`` steps from step ``first_step``; returns (status, steps
     done, neighbour builds) and the pairwise contact step's tally (proposals, rejections, sum of the
     rejection probabilities 1 - min(1, alpha)). Kernels: pair potential force(r / sigma_ik, params),
-    contact(u, w, r, mu, kT, params) -> (f/u, sqrt D) of the law's calculus, slope(u, w, r, params) =
+    contact(u, w, r, mu, kT, params) -> (f/u, D) of the law's calculus, slope(u, w, r, params) =
     df/du, weight(r / sigma_ik, params).
 
     status: OK, NOT_FINITE (a velocity became inf or NaN) or OVERLAP (r < overlap_limit sigma_ik).

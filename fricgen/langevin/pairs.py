@@ -45,6 +45,7 @@ def pair_slots(coordinates, bodies, dyn, couplings, pot_force, contact, weight, 
     start, neighbors = lists[0], lists[1]
     noise_key, friction_on, noise_on, conservative = switches
     box, inv_box, dims, kT = dyn.box, dyn.inv_box, dyn.dims, dyn.kT
+    potential, law = couplings.potential, couplings.law  # bound here: taken from the tuple in the loop, each kernel call would cost two atomic reference counts
     size = pos.shape[0]
     closest = np.full(size, np.inf)
     noise_scale = math.sqrt(2.0 * kT * dyn.dt)
@@ -69,7 +70,7 @@ def pair_slots(coordinates, bodies, dyn, couplings, pot_force, contact, weight, 
             closest[i] = min(closest[i], r / sigma)
             nx, ny, nz = dx / r, dy / r, dz / r
             if conservative:
-                magnitude = pot_force(r / sigma, couplings.potential) / sigma  # -dU/dr, scaled to sigma_ik
+                magnitude = pot_force(r / sigma, potential) / sigma  # -dU/dr, scaled to sigma_ik
                 slots[slot, 0], slots[slot, 1], slots[slot, 2] = -magnitude * nx, -magnitude * ny, -magnitude * nz
             if not friction_on:
                 continue
@@ -82,14 +83,14 @@ def pair_slots(coordinates, bodies, dyn, couplings, pot_force, contact, weight, 
             cx, cy, cz = cross(wx, wy, wz, nx, ny, nz)
             ux, uy, uz = rvx - along * nx - cx, rvy - along * ny - cy, rvz - along * nz - cz
             u = math.sqrt(ux * ux + uy * uy + uz * uz)
-            w = weight(r / sigma, couplings.law) / sigma if couplings.has_weight else 1.0
+            w = weight(r / sigma, law) / sigma if couplings.has_weight else 1.0
             mu = inv_mass[i] + inv_mass[k] + ri * ri * inv_inertia[i] + rk * rk * inv_inertia[k]
-            ratio, root = contact(u, w, r, mu, kT, couplings.law)
+            ratio, amplitude = contact(u, w, r, mu, kT, law)
             fx, fy, fz = ratio * ux, ratio * uy, ratio * uz
             slots[slot, 3], slots[slot, 4], slots[slot, 5] = fx, fy, fz
             slots[slot, 6], slots[slot, 7], slots[slot, 8] = cross(nx, ny, nz, fx, fy, fz)
             if noise_on:
-                amplitude = root * noise_scale
+                amplitude = math.sqrt(amplitude) * noise_scale
                 if dims == 3:  # P z: one random tangential force
                     z0, z1 = normal_pair_at(noise_key, i, k, 0)
                     z2 = normal_pair_at(noise_key, i, k, 1)[0]

@@ -156,7 +156,7 @@ def test_kernel_docstrings_show_their_formulas():
     assert linear.noise_amplitude("hk").__doc__.startswith("D(u) = gamma_f*w, the hk calculus: D = f/u as nu = 0")
     assert linear.friction.__doc__.startswith("f(u, w, r) = w*gamma_f*u")
     assert linear.noise_sqrt("ito").__doc__.startswith("sqrt(D(u)) = sqrt(gamma_f*w)")
-    assert linear.contact("ito").__doc__.startswith("(f/u, sqrt(D)) = (gamma_f*w, sqrt(gamma_f*w))")
+    assert linear.contact("ito").__doc__.startswith("(f/u, D) = (gamma_f*w, gamma_f*w)")
     assert linear.weight.__doc__.startswith("w(r) = -dU/dr of the potential wca = Piecewise((")
     coulomb = load_law_kernels("coulomb")
     assert coulomb.friction_over_u.__doc__.startswith("f/u = kappa_f*w/u, the factor of the tangential velocity; 0 at u <= 0")

@@ -26,8 +26,10 @@ def test_each_pair_once_and_each_particle_agree_bit_for_bit(dim):
     lists = build_neighbors(state.position, state.box, dim, 2 ** (1 / 6) + 0.3)
     once, each = np.zeros((300, 3)), np.zeros((300, 3))
     touching_once, touching_each = np.ones(lists[1].size, dtype=bool), np.ones(lists[1].size, dtype=bool)
-    closest = _each_pair_once(state.position, bodies, dyn, wca.force, couplings.potential, lists, once, touching_once)
-    assert closest == _each_particle(state.position, bodies, dyn, wca.force, couplings.potential, lists, each, touching_each) < 2 ** (1 / 6)
+    cell, potential = (tuple(state.box), tuple(inv_box), dim), couplings.potential
+    closest = _each_pair_once(state.position, bodies, cell, wca.force, potential, lists, once, touching_once)
+    cell = (state.box, inv_box, dim)
+    assert closest == _each_particle(state.position, bodies, cell, wca.force, potential, lists, each, touching_each) < 2 ** (1 / 6)
     owner = np.repeat(np.arange(300), np.diff(lists[0]))
     d = state.position[lists[1]] - state.position[owner]
     d -= state.box * np.rint(d / np.where(state.box > 0, state.box, 1))
