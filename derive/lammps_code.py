@@ -22,7 +22,7 @@ from .laws import FrictionLaw
 from .noise import NoiseModel, switches
 from .numeric_check import special_namespace
 from .potentials import PAIR_POTENTIALS, Potential
-from .printer import compact, cut, equation, fold_constants, stabilize
+from .printer import compact, cut, equation, fold_constants, share_exp, stabilize
 from .symbols import s, u
 
 INDENT = "  "
@@ -44,6 +44,10 @@ class CxxKernelPrinter(CXX17CodePrinter):
 
     def _print_erfcx(self, expr):
         return f"fricgen_erfcx({self._print(expr.args[0])})"
+
+    def _print_expm1_given_exp(self, expr):  # as generated.special.expm1_given_exp
+        e, x = (self._print(a) for a in expr.args)
+        return f"(({x}) < -0.6931471805599453 ? ({e}) - 1.0 : std::expm1({x}))"
 
     def _print_Float(self, expr):
         return repr(float(expr))
@@ -95,7 +99,7 @@ def comment(text: str, indent: str = "") -> str:
 
 
 def _statements(expr: sp.Expr, printer: CxxKernelPrinter, depth: int) -> list[str]:
-    replacements, (reduced,) = sp.cse([expr], symbols=sp.numbered_symbols("cse"), optimizations="basic")
+    replacements, (reduced,) = sp.cse([share_exp(expr)], symbols=sp.numbered_symbols("cse"), optimizations="basic")
     pad = INDENT * depth
     lines = [f"{pad}const double {printer.doprint(name)} = {printer.doprint(value)};" for name, value in replacements]
     return [*lines, f"{pad}return {printer.doprint(reduced)};"]

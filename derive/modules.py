@@ -155,8 +155,9 @@ def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, sou
             f"{INDENT}return friction_over_u(u, w, r, params), noise_amplitude_{c}({args})\n"
         )
     code = "".join("\n\n" + f for f in functions)
-    if "erfcx(" in code:  # the hash: a new erfcx rewrites this file, so Numba's cache (which tracks only its date) recompiles it
-        parts.insert(4, f"\nfrom ..special import erfcx  # special.py {_special_hash()[:16]}\n")
+    special = [name for name in ("erfcx", "expm1_given_exp") if f"{name}(" in code]
+    if special:  # the hash: a new special.py rewrites this file, so Numba's cache (which tracks only its date) recompiles it
+        parts.insert(4, f"\nfrom ..special import {', '.join(special)}  # special.py {_special_hash()[:16]}\n")
     return "".join(parts) + code
 
 

@@ -8,6 +8,11 @@ Rewrites (exact identities, applied before printing):
 - c exp(x) - c -> c expm1(x): no cancellation for x -> 0 (branch thresholds of Min laws);
 - 1 - tanh(x)^2 -> 1/cosh(x)^2: no cancellation for large x (the slope of a tanh law);
 - products of numeric constants -> one float literal (no runtime sqrt(pi) etc.).
+
+And per branch, just before common subexpressions are drawn (:func:`share_exp`): expm1(x) ->
+expm1_given_exp(exp(x), x) where exp(x) appears beside it, so that exp(x) is computed once and, for
+x < -ln 2, expm1 is taken as exp(x) - 1 (no cancellation there) instead of a second transcendental
+call (Coulomb–Newton's D holds both).
 """
 
 from __future__ import annotations
@@ -53,6 +58,30 @@ def _expm1_pairs(expr: sp.Add) -> sp.Expr:
             rest = [t for k, t in enumerate(terms) if k not in (i, j)]
             return _expm1_pairs(sp.Add(*rest, coeff * expm1(exps[0].args[0])))
     return expr
+
+
+class expm1_given_exp(sp.Function):  # noqa: N801 - the name of the kernel function (generated.special)
+    """expm1(x) given e = exp(x): e - 1 where x < -ln 2, else expm1(x) (the value is expm1(x) either way)."""
+
+    nargs = 2
+
+    def _eval_rewrite_as_exp(self, e, x, **kwargs):
+        return sp.exp(x) - 1
+
+
+def share_exp(expr: sp.Expr) -> sp.Expr:
+    """expm1(x) -> expm1_given_exp(exp(x), x) where exp(x) also appears in ``expr``; not inside a
+    Piecewise, whose branches CSE would then evaluate outside their conditions (exp(x) may overflow
+    in a branch that does not use it)."""
+    if expr.has(sp.Piecewise):
+        return expr
+    exps = {sp.expand(e.args[0]): e.args[0] for e in expr.atoms(sp.exp)}  # the same argument, any written form
+
+    def given_exp(e: expm1) -> sp.Expr:
+        x = exps.get(sp.expand(e.args[0]))
+        return e if x is None else expm1_given_exp(sp.exp(x), x)
+
+    return expr.replace(lambda e: isinstance(e, expm1), given_exp)
 
 
 def _sech_squared(expr: sp.Add) -> sp.Expr:
@@ -102,6 +131,9 @@ class KernelPrinter(PythonCodePrinter):
 
     def _print_erfcx(self, expr):
         return f"erfcx({self._print(expr.args[0])})"
+
+    def _print_expm1_given_exp(self, expr):
+        return f"expm1_given_exp({self._print(expr.args[0])}, {self._print(expr.args[1])})"
 
     def _print_Float(self, expr):
         return repr(float(expr))

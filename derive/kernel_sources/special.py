@@ -102,3 +102,11 @@ def _erfcx_right(x):
         numerator = numerator * y + _NUMERATOR[j]
         denominator = denominator * y + _DENOMINATOR[j]
     return numerator / (_SQRT_PI * x * denominator)
+
+
+@numba.njit(inline="always", cache=True)
+def expm1_given_exp(e, x):
+    """e^x - 1 given e = exp(x): e - 1 below x = -ln 2, where e < 1/2 and the difference loses
+    nothing (within 1 ulp), else expm1(x); a kernel that needs both exp(x) and expm1(x) pays one
+    transcendental call for arguments below -ln 2."""
+    return e - 1.0 if x < -0.6931471805599453 else math.expm1(x)

@@ -14,7 +14,7 @@ limit u -> 0+ where finite (viscous laws) and 0 otherwise (static friction: no f
 import math
 import numba
 
-from ..special import erfcx  # special.py e373a74cb9f046c3
+from ..special import erfcx  # special.py 410232c96b3d5b78
 
 LAW = 'coulomb'
 SOURCE_HASH = '6a6eff4f31763d5bc694e496f9fe2bc1bf203356ed775fcd2b1402c326a08d36'

@@ -14,7 +14,7 @@ limit u -> 0+ where finite (viscous laws) and 0 otherwise (static friction: no f
 import math
 import numba
 
-from ..special import erfcx  # special.py e373a74cb9f046c3
+from ..special import erfcx, expm1_given_exp  # special.py 410232c96b3d5b78
 
 LAW = 'coulomb_newton'
 SOURCE_HASH = '7488dcabd071d1df32a4f0c00f2b00d666aa1b24ca59e98ae5920ac64ec663cb'
@@ -74,9 +74,10 @@ def noise_amplitude_ito(u, w, r, mu, kT, params):
     gamma_f = params[0]
     kappa_f = params[1]
     if (u < kappa_f*w/gamma_f):
-        cse0 = (1/2)*(u**2 - kappa_f**2*w**2/gamma_f**2)/(kT*mu)
-        cse1 = 1/math.sqrt(kT*mu)
-        return 1.2533141373155003*cse1*kappa_f*w*math.exp(cse0)*erfcx(0.7071067811865476*cse1*kappa_f*w/gamma_f) - gamma_f*math.expm1(cse0)
+        cse0 = 1/math.sqrt(kT*mu)
+        cse1 = (1/2)*(u**2 - kappa_f**2*w**2/gamma_f**2)/(kT*mu)
+        cse2 = math.exp(cse1)
+        return 1.2533141373155003*cse0*cse2*kappa_f*w*erfcx(0.7071067811865476*cse0*kappa_f*w/gamma_f) - gamma_f*expm1_given_exp(cse2, cse1)
     cse0 = 1/math.sqrt(kT*mu)
     return 1.2533141373155003*cse0*kappa_f*w*erfcx(0.7071067811865476*cse0*u)
 
@@ -101,9 +102,10 @@ def noise_amplitude_stratonovich(u, w, r, mu, kT, params):
     gamma_f = params[0]
     kappa_f = params[1]
     if (u < kappa_f*w/gamma_f):
-        cse0 = (u**2 - kappa_f**2*w**2/gamma_f**2)/(kT*mu)
-        cse1 = 1/math.sqrt(kT*mu)
-        return 1.772453850905516*cse1*kappa_f*w*math.exp(cse0)*erfcx(cse1*kappa_f*w/gamma_f) - gamma_f*math.expm1(cse0)
+        cse0 = 1/math.sqrt(kT*mu)
+        cse1 = (u**2 - kappa_f**2*w**2/gamma_f**2)/(kT*mu)
+        cse2 = math.exp(cse1)
+        return 1.772453850905516*cse0*cse2*kappa_f*w*erfcx(cse0*kappa_f*w/gamma_f) - gamma_f*expm1_given_exp(cse2, cse1)
     cse0 = 1/math.sqrt(kT*mu)
     return 1.772453850905516*cse0*kappa_f*w*erfcx(cse0*u)
 

@@ -1,13 +1,19 @@
-"""The generated erfcx against scipy over the whole range, negative arguments included."""
+"""The generated special functions: erfcx against scipy over the whole range, negative arguments
+included; expm1_given_exp against mpmath, and the printer's rewrite that uses it."""
 
+import math
 from fractions import Fraction
 
 import mpmath
 import numpy as np
+import sympy as sp
 from scipy.special import erfcx as reference
+from sympy.codegen.cfunctions import expm1
 
 from derive.erfcx_pieces import erfcx_pieces
-from generated.special import _DENOMINATOR, _NUMERATOR, _PIECES, erfcx
+from derive.printer import expm1_given_exp as given_exp_function
+from derive.printer import share_exp
+from generated.special import _DENOMINATOR, _NUMERATOR, _PIECES, erfcx, expm1_given_exp
 
 
 def test_erfcx_matches_scipy():
@@ -49,3 +55,20 @@ def test_the_continued_fraction_coefficients_are_its_exact_convergent():
         b_before, b = b, _times_x_plus(b, b_before, Fraction(k, 2))
     assert all(c == 0 for c in a[0::2]) and all(c == 0 for c in b[1::2])  # A odd, B even
     assert [Fraction(c) for c in _NUMERATOR] == b[0::2] and [Fraction(c) for c in _DENOMINATOR] == a[1::2]
+
+
+def test_expm1_given_exp_is_within_one_ulp_on_both_sides_of_minus_ln_2():
+    xs = np.concatenate([np.random.default_rng(6).uniform(-40.0, 3.0, 3000), -math.log(2) + np.linspace(-1e-12, 1e-12, 11), [0.0, -1e-300]])
+    with mpmath.workdps(40):
+        exact = np.array([float(mpmath.expm1(mpmath.mpf(x))) for x in xs])
+    got = np.array([expm1_given_exp(math.exp(x), x) for x in xs])
+    assert np.all(np.abs(got - exact) <= np.spacing(np.abs(exact)))
+
+
+def test_the_printer_shares_exp_only_where_it_is_safe():
+    u, a = sp.symbols("u a", positive=True)
+    both = 3 * sp.exp((u**2 - 1) / a) - 2 * expm1(u**2 / a - 1 / a)  # one argument, written two ways
+    assert share_exp(both) == 3 * sp.exp((u**2 - 1) / a) - 2 * given_exp_function(sp.exp((u**2 - 1) / a), (u**2 - 1) / a)
+    assert share_exp(expm1(u)) == expm1(u)  # no exp(u) beside it: nothing to share
+    branch = sp.Piecewise((both, u < 1), (u, True)) * 2  # CSE would evaluate exp outside the condition
+    assert share_exp(branch) == branch

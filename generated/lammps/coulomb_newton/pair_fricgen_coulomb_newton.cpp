@@ -197,9 +197,10 @@ inline double noise_amplitude_ito(double u, double w, double r, double mu, doubl
   const double kappa_f = params[1];
   (void) r;
   if (u < kappa_f*w/gamma_f) {
-    const double cse0 = ((1.0/2.0))*(fricgen_powi(u, 2) - fricgen_powi(kappa_f, 2)*fricgen_powi(w, 2)/fricgen_powi(gamma_f, 2))/(kT*mu);
-    const double cse1 = (1.0/std::sqrt(kT*mu));
-    return 1.2533141373155003*cse1*kappa_f*w*std::exp(cse0)*fricgen_erfcx(0.7071067811865476*cse1*kappa_f*w/gamma_f) - gamma_f*std::expm1(cse0);
+    const double cse0 = (1.0/std::sqrt(kT*mu));
+    const double cse1 = ((1.0/2.0))*(fricgen_powi(u, 2) - fricgen_powi(kappa_f, 2)*fricgen_powi(w, 2)/fricgen_powi(gamma_f, 2))/(kT*mu);
+    const double cse2 = std::exp(cse1);
+    return 1.2533141373155003*cse0*cse2*kappa_f*w*fricgen_erfcx(0.7071067811865476*cse0*kappa_f*w/gamma_f) - gamma_f*((cse1) < -0.6931471805599453 ? (cse2) - 1.0 : std::expm1(cse1));
   }
   const double cse0 = (1.0/std::sqrt(kT*mu));
   return 1.2533141373155003*cse0*kappa_f*w*fricgen_erfcx(0.7071067811865476*cse0*u);
