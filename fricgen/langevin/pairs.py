@@ -45,7 +45,8 @@ def pair_slots(coordinates, bodies, dyn, couplings, pot_force, contact, weight, 
     start, neighbors = lists[0], lists[1]
     noise_key, friction_on, noise_on, conservative = switches
     box, inv_box, dims, kT = dyn.box, dyn.inv_box, dyn.dims, dyn.kT
-    potential, law = couplings.potential, couplings.law  # bound here: taken from the tuple in the loop, each kernel call would cost two atomic reference counts
+    # bound here: taken from their tuple within the loop, each kernel call would cost two atomic reference counts
+    potential, law = couplings.potential, couplings.law
     size = pos.shape[0]
     closest = np.full(size, np.inf)
     noise_scale = math.sqrt(2.0 * kT * dyn.dt)

@@ -64,7 +64,8 @@ def test_a_pair_update_moves_only_its_contact_mode(dims, noise):
     moved = 0
     for step in range(20):
         after = Motion(*(a.copy() for a in motion))
-        update_pair(after.velocity, after.omega, bodies, dyn, params, law, np.uint64(stream_key(1, step, CONTACT)), np.array([[0, 2]]), geometry[None], 0)
+        key = np.uint64(stream_key(1, step, CONTACT))
+        update_pair(after.velocity, after.omega, bodies, dyn, params, law, key, np.array([[0, 2]]), geometry[None], 0)
         assert np.array_equal(after.velocity[1], motion.velocity[1]) and np.array_equal(after.omega[1], motion.omega[1])
         impulse = MASS[0] * (after.velocity[0] - motion.velocity[0])
         if not impulse.any():
