@@ -4,7 +4,7 @@ Layout written by :func:`generate` (for a user's law folder DIR into DIR/generat
 potentials, which are built-in only; see derive.catalogues)::
 
     generated/__init__.py
-    generated/special.py              erfcx (copied from derive/kernel_sources/special.py)
+    generated/special.py              erfcx, expm1_given_exp (copied from derive/kernel_sources/special.py)
     generated/laws/<law>.py           weight, friction, friction_over_u, and per calculus
                                       noise_amplitude_<c>, noise_sqrt_<c>, contact_<c>
     generated/potentials/<name>.py    energy, force; external potentials U(x) also force_field
