@@ -14,7 +14,7 @@ import sympy as sp
 
 from .lawdata import GENERATOR_VERSION, Interval
 from .noise import branches
-from .printer import KernelPrinter, compact, fold_constants, share_exp
+from .printer import KernelPrinter, branch_cse, compact, fold_constants
 from .symbols import u
 
 #: Every kernel is inlined into the kernels that call it (contact_<c> -> noise_amplitude_<c> ->
@@ -64,7 +64,7 @@ def ranges_literal(ranges: list[Interval]) -> str:
 
 def statements(expr: sp.Expr, printer: KernelPrinter, depth: int) -> list[str]:
     """CSE assignments and the return of one branch."""
-    replacements, (reduced,) = sp.cse([share_exp(expr)], symbols=sp.numbered_symbols("cse"), optimizations="basic")
+    replacements, reduced = branch_cse(expr)
     pad = INDENT * depth
     lines = [f"{pad}{printer.doprint(name)} = {printer.doprint(value)}" for name, value in replacements]
     return [*lines, f"{pad}return {printer.doprint(reduced)}"]

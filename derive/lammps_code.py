@@ -22,7 +22,7 @@ from .laws import FrictionLaw
 from .noise import NoiseModel, switches
 from .numeric_check import special_namespace
 from .potentials import PAIR_POTENTIALS, Potential
-from .printer import compact, cut, equation, fold_constants, share_exp, stabilize
+from .printer import branch_cse, compact, cut, equation, fold_constants, stabilize
 from .symbols import s, u
 
 INDENT = "  "
@@ -99,7 +99,7 @@ def comment(text: str, indent: str = "") -> str:
 
 
 def _statements(expr: sp.Expr, printer: CxxKernelPrinter, depth: int) -> list[str]:
-    replacements, (reduced,) = sp.cse([share_exp(expr)], symbols=sp.numbered_symbols("cse"), optimizations="basic")
+    replacements, reduced = branch_cse(expr)
     pad = INDENT * depth
     lines = [f"{pad}const double {printer.doprint(name)} = {printer.doprint(value)};" for name, value in replacements]
     return [*lines, f"{pad}return {printer.doprint(reduced)};"]

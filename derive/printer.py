@@ -65,8 +65,12 @@ class expm1_given_exp(sp.Function):  # noqa: N801 - the name of the kernel funct
 
     nargs = 2
 
-    def _eval_rewrite_as_exp(self, e, x, **kwargs):
-        return sp.exp(x) - 1
+
+def branch_cse(expr: sp.Expr) -> tuple[list[tuple[sp.Symbol, sp.Expr]], sp.Expr]:
+    """Common subexpressions (cse0, cse1, ...) of one branch of a kernel, exp shared first (share_exp):
+    (assignments, the reduced expression), for the Python and the C++ kernels alike."""
+    replacements, (reduced,) = sp.cse([share_exp(expr)], symbols=sp.numbered_symbols("cse"), optimizations="basic")
+    return replacements, reduced
 
 
 def share_exp(expr: sp.Expr) -> sp.Expr:

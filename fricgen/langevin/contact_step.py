@@ -216,9 +216,9 @@ def _propose(x, w, r, mu, dyn, params, law, key, i, k):
 def update_pair(vel, omega, bodies, dyn, params, law, key, pairs, geometry, p):
     """Pair p's step (module docstring) on the velocities ``vel`` and spins ``omega`` in place; returns
     (the proposal's rejection probability 1 - min(1, alpha), rejected). ``vel`` and ``omega`` come
-    as arrays, not in their record, and ``bodies``' arrays are indexed, never bound to a name: an
-    array bound within the pair loop and used after a kernel call costs two atomic reference-count
-    operations per pair."""
+    as arrays, not in their record, and the inverse masses and inertias are indexed in ``bodies``
+    where they are used: an array bound to a name within the pair loop and used after a kernel call
+    costs two atomic reference-count operations per pair (``radius`` is used only before the calls)."""
     radius = bodies.radius
     i, k = pairs[p, 0], pairs[p, 1]
     nx, ny, nz, r, w, mu = geometry[p, 0], geometry[p, 1], geometry[p, 2], geometry[p, 3], geometry[p, 4], geometry[p, 5]

@@ -91,15 +91,15 @@ def pair_slots(coordinates, bodies, dyn, couplings, pot_force, contact, weight, 
             slots[slot, 3], slots[slot, 4], slots[slot, 5] = fx, fy, fz
             slots[slot, 6], slots[slot, 7], slots[slot, 8] = cross(nx, ny, nz, fx, fy, fz)
             if noise_on:
-                amplitude = math.sqrt(amplitude) * noise_scale
+                kick = math.sqrt(amplitude) * noise_scale  # sqrt(D) sqrt(2 kT dt)
                 if dims == 3:  # P z: one random tangential force
                     z0, z1 = normal_pair_at(noise_key, i, k, 0)
                     z2 = normal_pair_at(noise_key, i, k, 1)[0]
                     zn = z0 * nx + z1 * ny + z2 * nz
-                    jx, jy, jz = amplitude * (z0 - zn * nx), amplitude * (z1 - zn * ny), amplitude * (z2 - zn * nz)
+                    jx, jy, jz = kick * (z0 - zn * nx), kick * (z1 - zn * ny), kick * (z2 - zn * nz)
                 else:  # along t = z x n
                     z0 = normal_pair_at(noise_key, i, k, 0)[0]
-                    jx, jy, jz = -amplitude * z0 * ny, amplitude * z0 * nx, 0.0
+                    jx, jy, jz = -kick * z0 * ny, kick * z0 * nx, 0.0
                 slots[slot, 9], slots[slot, 10], slots[slot, 11] = jx, jy, jz
                 slots[slot, 12], slots[slot, 13], slots[slot, 14] = cross(nx, ny, nz, jx, jy, jz)
     return closest.min() if size else np.inf
