@@ -31,13 +31,12 @@ from numba import types
 
 from derive.calculus import Calculus
 
-from ..kernels import CONTACT_KERNEL, FRICTION_KERNEL, SCALAR_KERNEL
 from ..rng import CONTACT, SOLVENT, stream_key
 from .contact_step import contact_step
 from .forces import conservative_forces
-from .neighbors import build_neighbors
+from .neighbors import neighbor_list, still_valid
 from .pairs import PAIR_FIELDS, TERMS, WCA_RANGE, gather, pair_slots
-from .records import BODIES, COUPLINGS, DYNAMICS, MOTION
+from .records import BODIES, COUPLINGS, DYNAMICS, KERNELS, MOTION, NEIGHBOR_LIST
 from .single_particle import half_kick, kick_drift_solvent, solvent_coefficients
 
 OK, NOT_FINITE, OVERLAP = 0, 1, 2  # status of advance()
@@ -73,31 +72,34 @@ def _correct(new, bodies, dyn, terms, again):
             wnew[i, a] += bodies.inv_inertia[i] * dw
 
 
-#: advance(motion, bodies, dynamics, couplings, potential force, contact, friction slope, weight, first step, steps)
-#: -> (status, steps, neighbour builds, contact proposals, rejections, sum of rejection probabilities)
-_ADVANCE = types.Tuple([types.int64] * 5 + [types.float64])(
-    MOTION, BODIES, DYNAMICS, COUPLINGS, SCALAR_KERNEL, CONTACT_KERNEL, FRICTION_KERNEL, SCALAR_KERNEL, types.int64, types.int64
+#: advance(motion, bodies, dynamics, couplings, kernels, neighbour list, first step, steps) -> (status, steps,
+#: neighbour builds, contact proposals, rejections, sum of rejection probabilities, neighbour list)
+_ADVANCE = types.Tuple([types.int64] * 5 + [types.float64, NEIGHBOR_LIST])(
+    MOTION, BODIES, DYNAMICS, COUPLINGS, KERNELS, NEIGHBOR_LIST, types.int64, types.int64
 )
 
 
 @numba.njit(_ADVANCE, cache=True)
-def advance(motion, bodies, dyn, couplings, pot_force, contact, slope, weight, first_step, steps):
+def advance(motion, bodies, dyn, couplings, kernels, listed, first_step, steps):
     """Advance the motion in place by ``steps`` steps from step ``first_step``; returns (status, steps
-    done, neighbour builds) and the pairwise contact step's tally (proposals, rejections, sum of the
-    rejection probabilities 1 - min(1, alpha)). Kernels: pair potential force(r / sigma_ik, params),
-    contact(u, w, r, mu, kT, params) -> (f/u, D) of the law's calculus, slope(u, w, r, params) =
-    df/du, weight(r / sigma_ik, params).
+    done, neighbour builds), the pairwise contact step's tally (proposals, rejections, sum of the
+    rejection probabilities 1 - min(1, alpha)) and the neighbour list to pass to the next call.
+    ``kernels``: (force, contact, slope, weight) as records.KERNELS; ``listed``: the list the last call returned
+    (NeighborList.unbuilt() at first), kept while still valid for the motion's positions.
 
     status: OK, NOT_FINITE (a velocity became inf or NaN) or OVERLAP (r < overlap_limit sigma_ik).
     Forces at the current positions are recomputed on entry, so chunked runs and restarts are
     bit-identical to one long run.
     """
+    pot_force, contact, slope, weight = kernels
     pos, vel, omega = motion.position, motion.velocity, motion.omega
     size, dims, skin = pos.shape[0], dyn.dims, dyn.skin
     cutoff = WCA_RANGE * 2.0 * bodies.radius.max() + skin
-    lists = build_neighbors(pos, dyn.box, dims, cutoff)
-    reference, solvent = pos.copy(), solvent_coefficients(bodies, dyn)
-    builds, proposals, rejections, rejection = 1, 0, 0, 0.0
+    builds = 0
+    if not still_valid(listed, pos, dyn.box, dyn.inv_box, dims, cutoff, skin):
+        listed, builds = neighbor_list(pos, dyn.box, dims, cutoff), 1
+    lists, solvent = (listed.start, listed.neighbors, listed.reverse), solvent_coefficients(bodies, dyn)
+    proposals, rejections, rejection = 0, 0, 0.0
     explicit = dyn.friction and not dyn.pairwise
     slots = np.zeros((lists[1].size if explicit else 0, PAIR_FIELDS))
     terms, again = np.zeros((TERMS if explicit else 1, size, 3)), np.zeros((TERMS if explicit else 0, size, 3))
@@ -107,11 +109,11 @@ def advance(motion, bodies, dyn, couplings, pot_force, contact, slope, weight, f
     conservative_forces(pos, bodies, dyn, couplings, pot_force, lists, force, touching)  # at the initial positions
     for step in range(first_step, first_step + steps):
         n = step - first_step
-        if kick_drift_solvent(motion, bodies, dyn, force, solvent, stream_key(dyn.seed, step, SOLVENT), reference) > 0.5 * skin:
-            lists = build_neighbors(pos, dyn.box, dims, cutoff)
+        if kick_drift_solvent(motion, bodies, dyn, force, solvent, stream_key(dyn.seed, step, SOLVENT), listed.reference) > 0.5 * skin:
+            listed = neighbor_list(pos, dyn.box, dims, cutoff)
+            lists = (listed.start, listed.neighbors, listed.reverse)
             slots = np.zeros((lists[1].size if explicit else 0, PAIR_FIELDS))
             touching = np.zeros(lists[1].size, dtype=np.bool_)
-            reference[:] = pos
             builds += 1
         key = stream_key(dyn.seed, step, CONTACT)
         if explicit:
@@ -122,7 +124,7 @@ def advance(motion, bodies, dyn, couplings, pot_force, contact, slope, weight, f
         else:
             closest = conservative_forces(pos, bodies, dyn, couplings, pot_force, lists, force, touching)
         if closest < dyn.overlap_limit:
-            return OVERLAP, n, builds, proposals, rejections, rejection
+            return OVERLAP, n, builds, proposals, rejections, rejection, listed
         if explicit:
             _contact_kick(motion, bodies, dyn, terms, new)
             if dyn.noise and dyn.scheme != _ITO:
@@ -138,5 +140,5 @@ def advance(motion, bodies, dyn, couplings, pot_force, contact, slope, weight, f
             vel[:] = new[0]
             omega[:] = new[1]
         if not half_kick(motion, bodies, dyn, force):
-            return NOT_FINITE, n, builds, proposals, rejections, rejection
-    return OK, steps, builds, proposals, rejections, rejection
+            return NOT_FINITE, n, builds, proposals, rejections, rejection, listed
+    return OK, steps, builds, proposals, rejections, rejection, listed

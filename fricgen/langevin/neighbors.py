@@ -5,12 +5,21 @@ sorted by index, so force sums run in a fixed order: trajectories are bit-identi
 thread count and any cell traversal order. Stored in CSR form: the neighbours of i are
 ``neighbors[start[i]:start[i + 1]]``. Positions are wrapped into [0, L) in every periodic
 direction; in 2-D the z coordinate is 0 and not periodic.
+
+A list built with cutoff r_c = reach + skin holds every pair closer than the reach for as long as no
+particle has moved more than skin/2 since the build. The engine keeps it from one call to the next
+(:class:`fricgen.langevin.records.NeighborList`) and builds a new one only when that fails: which
+valid list a step uses does not change its result.
 """
 
 from __future__ import annotations
 
+import math
+
 import numba
 import numpy as np
+
+from .records import NeighborList
 
 
 @numba.njit(inline="always", cache=True)
@@ -26,6 +35,16 @@ def separation(pos, i, k, box, inv_box, dims):
     dy = minimum_image(pos[k, 1] - pos[i, 1], box[1], inv_box[1])
     dz = minimum_image(pos[k, 2] - pos[i, 2], box[2], inv_box[2]) if dims == 3 else 0.0
     return dx, dy, dz
+
+
+@numba.njit(inline="always", cache=True)
+def squared_displacement(pos, reference, i, box, inv_box, dims):
+    """|r_i - reference_i|^2, minimum image."""
+    d2 = 0.0
+    for a in range(dims):
+        d = minimum_image(pos[i, a] - reference[i, a], box[a], inv_box[a])
+        d2 += d * d
+    return d2
 
 
 @numba.njit(inline="always", cache=True)
@@ -112,3 +131,25 @@ def build_neighbors(pos, box, dims, cutoff):
             k = neighbors[slot]
             reverse[slot] = start[k] + np.searchsorted(neighbors[start[k] : start[k + 1]], i)
     return start, neighbors, reverse
+
+
+@numba.njit(cache=True)
+def neighbor_list(pos, box, dims, cutoff):
+    """The :class:`NeighborList` of all pairs closer than ``cutoff`` at positions ``pos``."""
+    start, neighbors, reverse = build_neighbors(pos, box, dims, cutoff)
+    return NeighborList(start, neighbors, reverse, pos.copy(), box.copy(), cutoff)
+
+
+@numba.njit(cache=True)
+def still_valid(listed, pos, box, inv_box, dims, cutoff, skin):
+    """Whether ``listed`` holds every pair closer than cutoff - skin at ``pos``: built for as many
+    particles, the same box and cutoff, and no particle moved more than skin/2 since."""
+    if listed.start.size != pos.shape[0] + 1 or listed.cutoff != cutoff:
+        return False
+    for a in range(3):
+        if listed.box[a] != box[a]:
+            return False
+    moved = 0.0
+    for i in range(pos.shape[0]):
+        moved = max(moved, squared_displacement(pos, listed.reference, i, box, inv_box, dims))
+    return math.sqrt(moved) <= 0.5 * skin

@@ -7,10 +7,14 @@ first-class functions of the types in :mod:`fricgen.kernels`).
 
 from __future__ import annotations
 
+import warnings
 from typing import NamedTuple
 
 import numpy as np
 from numba import types
+from numba.core.errors import NumbaExperimentalFeatureWarning
+
+from ..kernels import CONTACT_KERNEL, FRICTION_KERNEL, SCALAR_KERNEL
 
 _F, _I, _B = types.float64, types.int64, types.boolean
 _V, _M, _L = types.Array(_F, 1, "C"), types.Array(_F, 2, "C"), types.Array(_I, 1, "C")
@@ -68,7 +72,34 @@ class Couplings(NamedTuple):
     has_weight: bool
 
 
+class NeighborList(NamedTuple):
+    """A Verlet list kept from one call of the engine to the next: CSR ``start``, ``neighbors`` and
+    the ``reverse`` slots (fricgen.langevin.neighbors), the (N, 3) positions it was built at, and the
+    box lengths and cutoff it was built for."""
+
+    start: np.ndarray
+    neighbors: np.ndarray
+    reverse: np.ndarray
+    reference: np.ndarray
+    box: np.ndarray
+    cutoff: float
+
+    @classmethod
+    def unbuilt(cls) -> NeighborList:
+        """A list valid for no state: the engine builds one on its first step."""
+        none = np.zeros(0, dtype=np.int64)
+        return cls(none, none, none, np.zeros((0, 3)), np.zeros(3), 0.0)
+
+
 MOTION = types.NamedUniTuple(_M, 4, Motion)
 BODIES = types.NamedUniTuple(_V, 3, Bodies)
 DYNAMICS = types.NamedTuple([_V, _V, _V, _I, _F, _F, _F, _F, _F, _I, _I, _B, _B, _B, _F, _F, _I], Dynamics)
 COUPLINGS = types.NamedTuple([_V, _V, _B], Couplings)
+#: The compiled kernels of a run, (force, contact, slope, weight): the pair potential's force(r / sigma_ik, params), the law's
+#: contact(u, w, r, mu, kT, params) -> (f/u, D) in its calculus, the friction slope df/du(u, w, r, params) and the weight
+#: w(r / sigma_ik, params) (fricgen.kernels). A plain tuple: Numba converts compiled kernels to first-class functions in
+#: a tuple, not in a named tuple. (Numba warns that a tuple of function types is experimental each time one is made.)
+with warnings.catch_warnings():
+    warnings.simplefilter("ignore", NumbaExperimentalFeatureWarning)
+    KERNELS = types.Tuple([SCALAR_KERNEL, CONTACT_KERNEL, FRICTION_KERNEL, SCALAR_KERNEL])
+NEIGHBOR_LIST = types.NamedTuple([_L, _L, _L, _M, _V, _F], NeighborList)

@@ -17,7 +17,7 @@ from ..errors import ConfigError, SimulationError
 from ..kernels import load_law_kernels, load_potential, no_weight
 from . import integrator
 from .config import LangevinConfig
-from .records import Bodies, Couplings, Dynamics, Motion
+from .records import Bodies, Couplings, Dynamics, Motion, NeighborList
 from .system import Particles, State
 from .threads import ThreadChoice
 
@@ -41,7 +41,10 @@ class Simulation:
     """Runs a configuration on a state (in place); ``run`` calls observers between chunks.
 
     ``threads``: None (the default) measures 1 thread against all that numba may use as the run goes
-    and takes the faster (fricgen.langevin.threads); a number fixes it. Results do not depend on it."""
+    and takes the faster (fricgen.langevin.threads); a number fixes it. Results do not depend on it.
+    ``neighbor_list``: the engine's Verlet list, handed back in at each call and rebuilt by the engine
+    when it no longer holds for the state (fricgen.langevin.neighbors.still_valid), so a state
+    changed between calls is safe."""
 
     threads: int | None = None
 
@@ -54,7 +57,7 @@ class Simulation:
         params = dict(law.parameters) | {name: value for name, value in fixed.items() if name in self.kernels.parameter_names}
         self.potential = load_potential(config.potential)
         self.couplings = Couplings(np.array([config.epsilon, 1.0]), self.kernels.parameters(**params), self.kernels.has_weight)
-        self.neighbor_builds = 0
+        self.neighbor_list, self.neighbor_builds = NeighborList.unbuilt(), 0  # the list is kept while valid
         self.tally = ContactTally(0, 0, 0.0)
         self.thread_choice = ThreadChoice(numba.get_num_threads())
         if state.dim == 2 and (state.position[:, 2].any() or config.bulk.vector[2]):
@@ -64,6 +67,11 @@ class Simulation:
     def scheme(self) -> str:
         """The calculus whose scheme integrates the contact."""
         return self.config.law.integrator.value
+
+    def step_kernels(self) -> tuple:
+        """The kernels of the compiled engine, (force, contact, slope, weight) as records.KERNELS."""
+        weight = self.kernels.module.weight if self.kernels.has_weight else no_weight
+        return self.potential.force, self.contact, self.kernels.friction_slope, weight
 
     def dynamics(self) -> Dynamics:
         """The step parameters of the compiled engine."""
@@ -93,15 +101,13 @@ class Simulation:
 
     def _advance(self, steps: int) -> None:
         c, p, s = self.config, self.particles, self.state
-        status, done, builds, *tally = integrator.advance(
+        status, done, builds, *tally, self.neighbor_list = integrator.advance(
             Motion(s.position, s.velocity, s.omega, s.orientation),
             Bodies(p.radius, p.inv_mass, p.inv_inertia),
             self.dynamics(),
             self.couplings,
-            self.potential.force,
-            self.contact,
-            self.kernels.friction_slope,
-            self.kernels.module.weight if self.kernels.has_weight else no_weight,
+            self.step_kernels(),
+            self.neighbor_list,
             s.step,
             steps,
         )

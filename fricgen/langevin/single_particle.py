@@ -21,7 +21,7 @@ import numba
 import numpy as np
 
 from ..rng import ziggurat_normal
-from .neighbors import minimum_image
+from .neighbors import squared_displacement
 
 #: Columns of the solvent coefficients: c and s of translation, of rotation.
 DAMP, SPREAD, DAMP_ROT, SPREAD_ROT = 0, 1, 2, 3
@@ -104,7 +104,7 @@ def kick_drift_solvent(motion, bodies, dyn, force, solvent, key, reference):
     pos, vel, omega, quat = motion.position, motion.velocity, motion.omega, motion.orientation
     dims, box, h = dyn.dims, dyn.box, 0.5 * dyn.dt
     moved = np.zeros(pos.shape[0])
-    inv_mass = bodies.inv_mass
+    inv_mass, inv_box = bodies.inv_mass, dyn.inv_box  # bound here: taken from a record inside the loop, they would cost reference counts
     for i in numba.prange(pos.shape[0]):
         _kick(vel, quat, inv_mass, dyn, force, i)
         if inv_mass[i] == 0.0:
@@ -126,9 +126,5 @@ def kick_drift_solvent(motion, bodies, dyn, force, solvent, key, reference):
         else:
             rotate(quat, i, 0.0, 0.0, spin + omega[i, 2], h)
         _drift(pos, vel, i, dims, box, h)
-        d2 = 0.0
-        for a in range(dims):
-            d = minimum_image(pos[i, a] - reference[i, a], box[a], dyn.inv_box[a])
-            d2 += d * d
-        moved[i] = d2
+        moved[i] = squared_displacement(pos, reference, i, box, inv_box, dims)
     return math.sqrt(moved.max()) if pos.shape[0] else 0.0

@@ -25,6 +25,7 @@ from fricgen.langevin.forces import _each_pair_once, _each_particle, conservativ
 from fricgen.langevin.neighbors import build_neighbors
 from fricgen.langevin.pairs import PAIR_FIELDS, pair_slots
 from fricgen.langevin.records import Bodies, Motion
+from fricgen.langevin.single_particle import kick_drift_solvent, solvent_coefficients
 from fricgen.rng import CONTACT, stream_key
 
 _REFCOUNT = re.compile(r"call void @(NRT_incref|NRT_decref)\(ptr %([\w.$]+)")
@@ -124,6 +125,14 @@ def test_the_explicit_pair_loop_counts_no_references(engine):
     coordinates = (motion.position, motion.velocity, motion.omega)
     arguments = (coordinates, bodies, dyn, sim.couplings, sim.potential.force, sim.contact, weight, lists, switches, slots)
     _check(pair_slots, arguments, {4: SCALAR_KERNEL, 5: CONTACT_KERNEL, 6: SCALAR_KERNEL})
+
+
+def test_the_particle_pass_counts_no_references(engine):
+    """B A O A and the displacement since the list's build (an inlined helper with a loop)."""
+    sim, motion, bodies, dyn, _, _ = engine
+    key = np.uint64(stream_key(1, 1, CONTACT))
+    arguments = (motion, bodies, dyn, np.zeros((64, 3)), solvent_coefficients(bodies, dyn), key, motion.position.copy())
+    _check(kick_drift_solvent, arguments, {})
 
 
 @numba.njit(inline="always")
