@@ -106,12 +106,16 @@ def main() -> None:
     competitor = multiprocessing.Process(target=spin, daemon=True)
     competitor.start()
     try:
-        busy = {threads: [rate(small, threads, 1000) for _ in range(REPEATS)] for threads in (1, 2, None)}
+        busy = {threads: [] for threads in (1, 2, None)}
+        for _ in range(2 * REPEATS + 1):  # alternate: the competitor's share drifts
+            for threads, rates in busy.items():
+                rates.append(rate(small, threads, 1000))
     finally:
         competitor.terminate()
         competitor.join()
     print(
-        f"with one competing busy process, 2-D pairwise: 1 thread {median(busy[1])}, 2 threads {median(busy[2])}, "
+        f"with one competing busy process, 2-D pairwise, medians of {2 * REPEATS + 1} alternating repeats: "
+        f"1 thread {median(busy[1])}, 2 threads {median(busy[2])}, "
         f"chosen by the engine {median(busy[None])} (2 / 1 = {statistics.median(busy[2]) / statistics.median(busy[1]):.2f}, "
         f"chosen / 1 = {statistics.median(busy[None]) / statistics.median(busy[1]):.2f})"
     )
