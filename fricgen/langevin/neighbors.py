@@ -14,8 +14,6 @@ valid list a step uses does not change its result.
 
 from __future__ import annotations
 
-import math
-
 import numba
 import numpy as np
 
@@ -143,13 +141,14 @@ def neighbor_list(pos, box, dims, cutoff):
 @numba.njit(cache=True)
 def still_valid(listed, pos, box, inv_box, dims, cutoff, skin):
     """Whether ``listed`` holds every pair closer than cutoff - skin at ``pos``: built for as many
-    particles, the same box and cutoff, and no particle moved more than skin/2 since."""
+    particles, the same box and cutoff, and no particle moved more than skin/2 (nor to NaN) since."""
     if listed.start.size != pos.shape[0] + 1 or listed.cutoff != cutoff:
         return False
     for a in range(3):
         if listed.box[a] != box[a]:
             return False
-    moved = 0.0
+    limit = 0.25 * skin * skin
     for i in range(pos.shape[0]):
-        moved = max(moved, squared_displacement(pos, listed.reference, i, box, inv_box, dims))
-    return math.sqrt(moved) <= 0.5 * skin
+        if not squared_displacement(pos, listed.reference, i, box, inv_box, dims) <= limit:  # also NaN
+            return False
+    return True

@@ -46,6 +46,8 @@ def test_a_kept_list_is_valid_only_for_what_it_was_built_for():
     assert still_valid(listed, moved, box, inv_box, 2, cutoff, skin)
     moved[7, 0] += 0.02
     assert not still_valid(listed, moved, box, inv_box, 2, cutoff, skin)
+    moved[7, 0] = np.nan
+    assert not still_valid(listed, moved, box, inv_box, 2, cutoff, skin)
     wrapped = pos.copy()
     wrapped[3, 0] = 9.95  # a move by 0.1 across the boundary
     assert still_valid(listed, wrapped, box, inv_box, 2, cutoff, skin)

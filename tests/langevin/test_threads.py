@@ -1,6 +1,6 @@
 """The engine's thread count: measured, the faster kept, the slower measured again less and less often."""
 
-from fricgen.langevin.threads import PROBE_EVERY, PROBE_MOST, ThreadChoice
+from fricgen.langevin.threads import CHUNK_SECONDS, PROBE_EVERY, PROBE_MOST, ThreadChoice
 
 
 def run(choice: ThreadChoice, rates: dict[int, float], chunks: int) -> list[int]:
@@ -30,7 +30,7 @@ def test_a_count_that_became_faster_takes_over():
     assert used[-20:].count(2) >= 19
 
 
-def test_one_thread_only_and_chunks_of_about_a_tenth_of_a_second():
+def test_one_thread_only_and_chunks_of_chunk_seconds():
     choice = ThreadChoice(1)
     assert run(choice, {1: 1000.0}, 5) == [1] * 5
-    assert choice.steps(1, 10**9) == 100 and choice.steps(1, 7) == 7
+    assert choice.steps(1, 10**9) == round(1000.0 * CHUNK_SECONDS) and choice.steps(1, 7) == 7
