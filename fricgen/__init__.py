@@ -12,12 +12,25 @@ subpackage's ``__init__`` is its public API:
 
 The engines import only the kernel layer, the RNG, schema/errors and derive's plain-data modules
 (``derive.calculus``, ``derive.lawdata``); never each other, the application or SymPy
-(tests/test_layers.py). ``import fricgen`` itself loads nothing but the error family.
+(tests/test_layers.py). ``import fricgen`` itself loads nothing but the error family; it puts TBB
+where Numba finds it, sets the default thread count and clears Numba's cached code of the compiled
+layers when their sources changed (:func:`clear_stale_caches`).
 """
 
 import ctypes
+import hashlib
 import importlib.metadata
 import os
+from pathlib import Path
+
+try:
+    import fcntl
+except ImportError:  # Windows: no lock around the clearing
+    fcntl = None
+
+#: The files whose compiled functions call each other: the engines, the kernel layer's compiled
+#: parts, and derive/calculus.py, whose constants are compiled in (paths relative to fricgen/).
+COMPILED_SOURCES = ("langevin", "rods", "kernels.py", "rng.py", "../derive/calculus.py")
 
 
 def _load_tbb() -> None:
@@ -39,7 +52,39 @@ def _load_tbb() -> None:
             return
 
 
+def clear_stale_caches(root: Path, sources: tuple[str, ...] = COMPILED_SOURCES) -> bool:
+    """Delete Numba's cached code (``*.nbi``, ``*.nbc``) in the ``__pycache__`` folders under
+    ``root`` if the Python files of ``sources`` (files, or folders searched recursively, relative to
+    ``root``) changed since the last call; returns whether it did. Numba checks a cached function
+    only against its own file, yet the cached code holds the compiled functions it calls: after an
+    edit of ``neighbors.py``, ``integrator.advance`` would run the old code. Does nothing where
+    ``root`` is not writable (Numba then caches elsewhere) or for a ``NUMBA_CACHE_DIR``."""
+    digest = hashlib.sha256()
+    for name in sources:
+        path = root / name
+        for file in sorted(path.rglob("*.py")) if path.is_dir() else [path] if path.exists() else []:
+            digest.update(file.relative_to(root).as_posix().encode() + file.read_bytes())
+    stamp = root / "__pycache__" / "compiled-sources.sha256"
+    try:
+        stamp.parent.mkdir(exist_ok=True)
+        with open(stamp, "a+") as handle:  # the lock keeps processes that start together from clearing each other's new caches
+            if fcntl:
+                fcntl.flock(handle, fcntl.LOCK_EX)
+            handle.seek(0)
+            if handle.read() == digest.hexdigest():
+                return False
+            for cache in root.rglob("__pycache__/*.nb[ic]"):
+                cache.unlink(missing_ok=True)
+            handle.seek(0)
+            handle.truncate()
+            handle.write(digest.hexdigest())
+            return True
+    except OSError:
+        return False
+
+
 _load_tbb()
+clear_stale_caches(Path(__file__).parent)
 
 #: The default thread count is the number of CPUs this process may use (its affinity), not the
 #: machine's; a user's own NUMBA_NUM_THREADS wins, and it acts only when fricgen is imported before
