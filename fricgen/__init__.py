@@ -21,6 +21,7 @@ import ctypes
 import hashlib
 import importlib.metadata
 import os
+import warnings
 from pathlib import Path
 
 try:
@@ -85,6 +86,9 @@ def clear_stale_caches(root: Path, sources: tuple[str, ...] = COMPILED_SOURCES) 
 
 _load_tbb()
 clear_stale_caches(Path(__file__).parent)
+#: The engines take their kernels as first-class functions by design: Numba's warning that the
+#: feature is experimental, at each compile and each tuple type of such functions, says nothing new.
+warnings.filterwarnings("ignore", message="First-class function type feature is experimental")
 
 #: The default thread count is the number of CPUs this process may use (its affinity), not the
 #: machine's; a user's own NUMBA_NUM_THREADS wins, and it acts only when fricgen is imported before

@@ -7,12 +7,10 @@ first-class functions of the types in :mod:`fricgen.kernels`).
 
 from __future__ import annotations
 
-import warnings
 from typing import NamedTuple
 
 import numpy as np
 from numba import types
-from numba.core.errors import NumbaExperimentalFeatureWarning
 
 from ..kernels import CONTACT_KERNEL, FRICTION_KERNEL, SCALAR_KERNEL
 
@@ -98,8 +96,6 @@ COUPLINGS = types.NamedTuple([_V, _V, _B], Couplings)
 #: The compiled kernels of a run, (force, contact, slope, weight): the pair potential's force(r / sigma_ik, params), the law's
 #: contact(u, w, r, mu, kT, params) -> (f/u, D) in its calculus, the friction slope df/du(u, w, r, params) and the weight
 #: w(r / sigma_ik, params) (fricgen.kernels). A plain tuple: Numba converts compiled kernels to first-class functions in
-#: a tuple, not in a named tuple. (Numba warns that a tuple of function types is experimental each time one is made.)
-with warnings.catch_warnings():
-    warnings.simplefilter("ignore", NumbaExperimentalFeatureWarning)
-    KERNELS = types.Tuple([SCALAR_KERNEL, CONTACT_KERNEL, FRICTION_KERNEL, SCALAR_KERNEL])
+#: a tuple, not in a named tuple.
+KERNELS = types.Tuple([SCALAR_KERNEL, CONTACT_KERNEL, FRICTION_KERNEL, SCALAR_KERNEL])
 NEIGHBOR_LIST = types.NamedTuple([_L, _L, _L, _M, _V, _F], NeighborList)
