@@ -72,6 +72,15 @@ def _correct(new, bodies, dyn, terms, again):
             wnew[i, a] += bodies.inv_inertia[i] * dw
 
 
+@numba.njit(cache=True)
+def _per_slot(listed, explicit):
+    """For a neighbour list: (start, neighbors, reverse), the explicit kick's pair slots (none for the
+    pairwise step) and ``touching``, the pairs in contact that the force pass marks."""
+    lists = (listed.start, listed.neighbors, listed.reverse)
+    slots = np.zeros((listed.neighbors.size if explicit else 0, PAIR_FIELDS))
+    return lists, slots, np.zeros(listed.neighbors.size, dtype=np.bool_)
+
+
 #: advance(motion, bodies, dynamics, couplings, kernels, neighbour list, first step, steps) -> (status, steps,
 #: neighbour builds, contact proposals, rejections, sum of rejection probabilities, neighbour list)
 _ADVANCE = types.Tuple([types.int64] * 5 + [types.float64, NEIGHBOR_LIST])(
@@ -98,22 +107,19 @@ def advance(motion, bodies, dyn, couplings, kernels, listed, first_step, steps):
     builds = 0
     if not still_valid(listed, pos, dyn.box, dyn.inv_box, dims, cutoff, skin):
         listed, builds = neighbor_list(pos, dyn.box, dims, cutoff), 1
-    lists, solvent = (listed.start, listed.neighbors, listed.reverse), solvent_coefficients(bodies, dyn)
+    solvent = solvent_coefficients(bodies, dyn)
     proposals, rejections, rejection = 0, 0, 0.0
     explicit = dyn.friction and not dyn.pairwise
-    slots = np.zeros((lists[1].size if explicit else 0, PAIR_FIELDS))
+    lists, slots, touching = _per_slot(listed, explicit)
     terms, again = np.zeros((TERMS if explicit else 1, size, 3)), np.zeros((TERMS if explicit else 0, size, 3))
     force = terms[0]  # the conservative force (the explicit kick's pair pass fills it with the contact terms)
-    touching = np.zeros(lists[1].size, dtype=np.bool_)  # the pairs in contact, marked by the force pass
     new = (np.empty((size, 3)), np.empty((size, 3)))
     conservative_forces(pos, bodies, dyn, couplings, pot_force, lists, force, touching)  # at the initial positions
     for step in range(first_step, first_step + steps):
         n = step - first_step
         if kick_drift_solvent(motion, bodies, dyn, force, solvent, stream_key(dyn.seed, step, SOLVENT), listed.reference) > 0.5 * skin:
             listed = neighbor_list(pos, dyn.box, dims, cutoff)
-            lists = (listed.start, listed.neighbors, listed.reverse)
-            slots = np.zeros((lists[1].size if explicit else 0, PAIR_FIELDS))
-            touching = np.zeros(lists[1].size, dtype=np.bool_)
+            lists, slots, touching = _per_slot(listed, explicit)
             builds += 1
         key = stream_key(dyn.seed, step, CONTACT)
         if explicit:
