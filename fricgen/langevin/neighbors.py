@@ -19,6 +19,9 @@ import numpy as np
 
 from .records import NeighborList
 
+#: Neighbour counts up to which a list is sorted by insertion (fricgen.langevin.neighbors._sort_short).
+SHORT = 32
+
 
 @numba.njit(inline="always", cache=True)
 def minimum_image(d, length, inverse):
@@ -73,10 +76,34 @@ def _cells(pos, box, dims, cutoff):
     return n, cell, order, first
 
 
+@numba.njit(inline="always", cache=True)
+def _wrap(c, n):
+    """c modulo n for -n <= c < 2n, without an integer division (which would cost more than a
+    distance check, 27 times per particle in 3-D)."""
+    return c + n if c < 0 else (c - n if c >= n else c)
+
+
+@numba.njit(inline="always", cache=True)
+def _sort_short(segment):
+    """Sort a particle's neighbours in place: insertion sort for the few of a contact list (a call
+    of the general sort costs more than sorting them), the general sort beyond SHORT."""
+    if segment.size > SHORT:
+        segment.sort()
+        return
+    for j in range(1, segment.size):
+        value, m = segment[j], j - 1
+        while m >= 0 and segment[m] > value:
+            segment[m + 1] = segment[m]
+            m -= 1
+        segment[m + 1] = value
+
+
 @numba.njit(cache=True)
 def _visit(i, pos, box, dims, cutoff2, cells, out, fill):
-    """Count (fill=False) or write (fill=True) the neighbours of i; returns the count.
-    ``cells`` = (cells per direction, cell of each particle, particles sorted by cell, first of each cell)."""
+    """fill=False: the number of particles in i's cell and the cells around it (i included), a bound
+    on its neighbours that needs no distance; fill=True: write the neighbours of i into ``out`` (as
+    long as that bound), returns their count. ``cells`` = (cells per direction, cell of each particle,
+    particles sorted by cell, first of each cell)."""
     n, cell, order, first = cells
     nx, ny, nz = n[0], n[1], n[2]
     cx, cy, cz = (cell[i] // (ny * nz), (cell[i] // nz) % ny, cell[i] % nz) if dims == 3 else (cell[i] // ny, cell[i] % ny, 0)
@@ -84,9 +111,14 @@ def _visit(i, pos, box, dims, cutoff2, cells, out, fill):
     inv_x, inv_y, inv_z = 1.0 / box[0], 1.0 / box[1], 1.0 / box[2] if dims == 3 else 0.0
     count = 0
     for dx in range(x0, x1 + 1):
+        column = _wrap(cx + dx, nx) * ny
         for dy in range(y0, y1 + 1):
+            row = (column + _wrap(cy + dy, ny)) * nz
             for dz in range(z0, z1 + 1):
-                index = ((cx + dx) % nx * ny + (cy + dy) % ny) * nz + (cz + dz) % nz
+                index = row + _wrap(cz + dz, nz)
+                if not fill:
+                    count += first[index + 1] - first[index]
+                    continue
                 for slot in range(first[index], first[index + 1]):
                     k = order[slot]
                     if k == i:
@@ -99,30 +131,40 @@ def _visit(i, pos, box, dims, cutoff2, cells, out, fill):
                         d = minimum_image(pos[k, 2] - pos[i, 2], box[2], inv_z)
                         r2 += d * d
                     if r2 < cutoff2:
-                        if fill:
-                            out[count] = k
+                        out[count] = k
                         count += 1
     return count
+
+
+@numba.njit(cache=True)
+def _offsets_of(counts):
+    """CSR offsets: [0, counts[0], counts[0] + counts[1], ...]."""
+    offsets = np.zeros(counts.size + 1, dtype=np.int64)
+    for i in range(counts.size):
+        offsets[i + 1] = offsets[i] + counts[i]
+    return offsets
 
 
 @numba.njit(parallel=True, cache=True)
 def build_neighbors(pos, box, dims, cutoff):
     """Full Verlet list of all pairs closer than ``cutoff``: CSR (start, neighbors) and ``reverse``,
-    the slot of (k, i) for the slot of (i, k)."""
+    the slot of (k, i) for the slot of (i, k). One pass over the distances: each particle writes its
+    neighbours, sorted, into room for its candidates (``_visit``), then the lists are packed."""
     size = pos.shape[0]
     cells = _cells(pos, box, dims, cutoff)
     counts = np.empty(size, dtype=np.int64)
-    dummy = np.empty(0, dtype=np.int64)
+    none = np.empty(0, dtype=np.int64)
     for i in numba.prange(size):
-        counts[i] = _visit(i, pos, box, dims, cutoff * cutoff, cells, dummy, False)
-    start = np.zeros(size + 1, dtype=np.int64)
-    for i in range(size):
-        start[i + 1] = start[i] + counts[i]
+        counts[i] = _visit(i, pos, box, dims, cutoff * cutoff, cells, none, False)
+    room = _offsets_of(counts)
+    scratch = np.empty(room[size], dtype=np.int64)
+    for i in numba.prange(size):
+        counts[i] = _visit(i, pos, box, dims, cutoff * cutoff, cells, scratch[room[i] : room[i + 1]], True)
+        _sort_short(scratch[room[i] : room[i] + counts[i]])
+    start = _offsets_of(counts)
     neighbors = np.empty(start[size], dtype=np.int64)
     for i in numba.prange(size):
-        segment = neighbors[start[i] : start[i + 1]]
-        _visit(i, pos, box, dims, cutoff * cutoff, cells, segment, True)
-        segment.sort()
+        neighbors[start[i] : start[i + 1]] = scratch[room[i] : room[i] + counts[i]]
     reverse = np.empty_like(neighbors)
     for i in numba.prange(size):
         for slot in range(start[i], start[i + 1]):

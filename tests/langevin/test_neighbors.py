@@ -4,24 +4,26 @@ when a list kept between calls is still valid."""
 import numpy as np
 import pytest
 
-from fricgen.langevin.neighbors import build_neighbors, neighbor_list, still_valid
+from fricgen.langevin.neighbors import SHORT, build_neighbors, neighbor_list, still_valid
 from fricgen.langevin.records import NeighborList
 
-CASES = [  # (dimension, particles, box): many cells, and boxes of one or two cells along a direction
-    (2, 500, [20.0, 20.0, 0.0]),
-    (3, 400, [8.0, 9.0, 7.0]),
-    (2, 50, [2.5, 3.0, 0.0]),
-    (3, 30, [2.0, 2.9, 5.0]),
+CASES = [  # (dimension, particles, box, lists longer than SHORT): many cells, boxes of one or two cells along a direction
+    (2, 500, [20.0, 20.0, 0.0], False),
+    (3, 400, [8.0, 9.0, 7.0], False),
+    (2, 50, [2.5, 3.0, 0.0], True),
+    (3, 30, [2.0, 2.9, 5.0], False),
+    (3, 300, [4.0, 4.0, 4.0], True),
 ]
 
 
-@pytest.mark.parametrize(("dims", "n", "box"), CASES)
-def test_the_list_holds_exactly_the_pairs_within_the_cutoff(dims, n, box):
+@pytest.mark.parametrize(("dims", "n", "box", "long"), CASES)
+def test_the_list_holds_exactly_the_pairs_within_the_cutoff(dims, n, box, long):
     rng = np.random.default_rng(3)
     box = np.array(box)
     pos = rng.uniform(0, 1, (n, 3)) * box
     cutoff = 1.3
     start, neighbors, reverse = build_neighbors(pos, box, dims, cutoff)
+    assert (np.diff(start).max() > SHORT) == long  # insertion sort, and the general sort beyond SHORT
     for i in range(n):
         d = pos[:, :dims] - pos[i, :dims]
         d -= box[:dims] * np.rint(d / box[:dims])
