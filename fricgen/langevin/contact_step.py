@@ -213,22 +213,29 @@ def _propose(x, w, r, mu, dyn, params, law, key, i, k):
 
 
 @numba.njit(inline="always", cache=True)
-def update_pair(vel, omega, bodies, dyn, params, law, key, pairs, geometry, p):
-    """Pair p's step (module docstring) on the velocities ``vel`` and spins ``omega`` in place; returns
-    (the proposal's rejection probability 1 - min(1, alpha), rejected). ``vel`` and ``omega`` come
-    as arrays, not in their record, and the inverse masses and inertias are indexed in ``bodies``
-    where they are used: an array bound to a name within the pair loop and used after a kernel call
-    costs two atomic reference-count operations per pair (``radius`` is used only before the calls)."""
-    radius = bodies.radius
-    i, k = pairs[p, 0], pairs[p, 1]
-    nx, ny, nz, r, w, mu = geometry[p, 0], geometry[p, 1], geometry[p, 2], geometry[p, 3], geometry[p, 4], geometry[p, 5]
-    ri, rk = radius[i], radius[k]
-    # u_perp = P (v_k - v_i) - (R_i w_i + R_k w_k) x n   (F-4), as x = u_perp . (e1 + i e2): P drops out
+def contact_mode(vel, omega, i, k, ri, rk, nx, ny, nz, dims):
+    """(x, e1x, e1y, e1z, e2x, e2y, e2z): the contact mode x = u_perp . (e1 + i e2) of pair (i, k) with
+    radii (ri, rk) and unit normal n, and the tangents; u_perp = P (v_k - v_i) - (R_i w_i + R_k w_k) x n
+    (F-4), P drops out. Flat: Numba's array analysis fails on nested tuples that a function inlined
+    into a parallel loop returns."""
     wx, wy, wz = ri * omega[i, 0] + rk * omega[k, 0], ri * omega[i, 1] + rk * omega[k, 1], ri * omega[i, 2] + rk * omega[k, 2]
     cx, cy, cz = cross(wx, wy, wz, nx, ny, nz)
     ux, uy, uz = vel[k, 0] - vel[i, 0] - cx, vel[k, 1] - vel[i, 1] - cy, vel[k, 2] - vel[i, 2] - cz
-    (ax, ay, az), (bx, by, bz) = _tangents(nx, ny, nz, dyn.dims)
-    x = complex(ux * ax + uy * ay + uz * az, ux * bx + uy * by + uz * bz)
+    (ax, ay, az), (bx, by, bz) = _tangents(nx, ny, nz, dims)
+    return complex(ux * ax + uy * ay + uz * az, ux * bx + uy * by + uz * bz), ax, ay, az, bx, by, bz
+
+
+@numba.njit(inline="always", cache=True)
+def update_pair(vel, omega, bodies, dyn, params, law, key, pairs, geometry, p):
+    """Pair p's step (module docstring) on the velocities ``vel`` and spins ``omega`` in place; returns
+    (the proposal's rejection probability 1 - min(1, alpha), rejected). ``vel`` and ``omega`` come
+    as arrays, not in their record, and the radii, inverse masses and inertias are indexed in ``bodies``
+    where they are used: an array bound to a name within the pair loop and used after a kernel call
+    costs two atomic reference-count operations per pair."""
+    i, k = pairs[p, 0], pairs[p, 1]
+    nx, ny, nz, r, w, mu = geometry[p, 0], geometry[p, 1], geometry[p, 2], geometry[p, 3], geometry[p, 4], geometry[p, 5]
+    ri, rk = bodies.radius[i], bodies.radius[k]
+    x, ax, ay, az, bx, by, bz = contact_mode(vel, omega, i, k, ri, rk, nx, ny, nz, dyn.dims)
     rejection, rejected = 0.0, False
     if dyn.noise:
         y, rejection = _propose(x, w, r, mu, dyn, params, law, key, i, k)
