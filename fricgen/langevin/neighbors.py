@@ -56,6 +56,9 @@ def _offsets(n):
 
 @numba.njit(cache=True)
 def _cells(pos, box, dims, cutoff):
+    """(cells per direction, cell of each particle, particles sorted by cell (stable), first of each
+    cell in that order, positions in that order): a counting sort, and the positions copied in cell
+    order so that a cell's particles are read from consecutive memory."""
     n = np.ones(3, dtype=np.int64)
     for a in range(dims):
         n[a] = max(1, int(box[a] / cutoff))
@@ -67,13 +70,18 @@ def _cells(pos, box, dims, cutoff):
             c = min(max(c, 0), n[a] - 1)
             index = index * n[a] + c
         cell[i] = index
-    order = np.argsort(cell, kind="mergesort")
     first = np.zeros(n[0] * n[1] * n[2] + 1, dtype=np.int64)
     for i in range(pos.shape[0]):
         first[cell[i] + 1] += 1
     for c in range(first.size - 1):
         first[c + 1] += first[c]
-    return n, cell, order, first
+    order, packed, filled = np.empty(pos.shape[0], dtype=np.int64), np.empty((pos.shape[0], 3)), first[:-1].copy()
+    for i in range(pos.shape[0]):
+        slot = filled[cell[i]]
+        order[slot] = i
+        packed[slot, 0], packed[slot, 1], packed[slot, 2] = pos[i, 0], pos[i, 1], pos[i, 2]
+        filled[cell[i]] += 1
+    return n, cell, order, first, packed
 
 
 @numba.njit(inline="always", cache=True)
@@ -102,9 +110,8 @@ def _sort_short(segment):
 def _visit(i, pos, box, dims, cutoff2, cells, out, fill):
     """fill=False: the number of particles in i's cell and the cells around it (i included), a bound
     on its neighbours that needs no distance; fill=True: write the neighbours of i into ``out`` (as
-    long as that bound), returns their count. ``cells`` = (cells per direction, cell of each particle,
-    particles sorted by cell, first of each cell)."""
-    n, cell, order, first = cells
+    long as that bound), returns their count. ``cells``: as _cells returns them."""
+    n, cell, order, first, packed = cells
     nx, ny, nz = n[0], n[1], n[2]
     cx, cy, cz = (cell[i] // (ny * nz), (cell[i] // nz) % ny, cell[i] % nz) if dims == 3 else (cell[i] // ny, cell[i] % ny, 0)
     (x0, x1), (y0, y1), (z0, z1) = _offsets(nx), _offsets(ny), _offsets(nz) if dims == 3 else (0, 0)
@@ -121,19 +128,33 @@ def _visit(i, pos, box, dims, cutoff2, cells, out, fill):
                     continue
                 for slot in range(first[index], first[index + 1]):
                     k = order[slot]
-                    if k == i:
-                        continue
-                    d = minimum_image(pos[k, 0] - pos[i, 0], box[0], inv_x)
+                    d = minimum_image(packed[slot, 0] - pos[i, 0], box[0], inv_x)
                     r2 = d * d
-                    d = minimum_image(pos[k, 1] - pos[i, 1], box[1], inv_y)
+                    d = minimum_image(packed[slot, 1] - pos[i, 1], box[1], inv_y)
                     r2 += d * d
                     if dims == 3:
-                        d = minimum_image(pos[k, 2] - pos[i, 2], box[2], inv_z)
+                        d = minimum_image(packed[slot, 2] - pos[i, 2], box[2], inv_z)
                         r2 += d * d
-                    if r2 < cutoff2:
-                        out[count] = k
-                        count += 1
+                    out[count] = k  # written always and kept if near (out has room for every candidate): no branch to mispredict
+                    count += (r2 < cutoff2) & (k != i)
     return count
+
+
+@numba.njit(cache=True)
+def _reverse_slots(start, neighbors):
+    """reverse[slot of (i, k)] = slot of (k, i) in a full, sorted list. Walks the particles in order:
+    the partners k < i lead i's list, and i is the next partner above k in k's list that no earlier
+    particle took (cursor[k]), since the particles that took them came before i."""
+    reverse, cursor = np.empty_like(neighbors), np.empty(start.size - 1, dtype=np.int64)
+    for i in range(start.size - 1):
+        slot = start[i]
+        while slot < start[i + 1] and neighbors[slot] < i:
+            back = cursor[neighbors[slot]]
+            cursor[neighbors[slot]] += 1
+            reverse[slot], reverse[back] = back, slot
+            slot += 1
+        cursor[i] = slot
+    return reverse
 
 
 @numba.njit(cache=True)
@@ -165,12 +186,7 @@ def build_neighbors(pos, box, dims, cutoff):
     neighbors = np.empty(start[size], dtype=np.int64)
     for i in numba.prange(size):
         neighbors[start[i] : start[i + 1]] = scratch[room[i] : room[i] + counts[i]]
-    reverse = np.empty_like(neighbors)
-    for i in numba.prange(size):
-        for slot in range(start[i], start[i + 1]):
-            k = neighbors[slot]
-            reverse[slot] = start[k] + np.searchsorted(neighbors[start[k] : start[k + 1]], i)
-    return start, neighbors, reverse
+    return start, neighbors, _reverse_slots(start, neighbors)
 
 
 @numba.njit(cache=True)

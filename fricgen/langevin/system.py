@@ -120,11 +120,15 @@ def interaction_reach(radius: float, skin: float) -> float:
 
 def memory_estimate(n: int, box: tuple[float, ...], radius: float, skin: float) -> float:
     """Bytes that a run of n spheres in a periodic box of lengths ``box`` (2 or 3) needs, estimated
-    from above before anything is allocated: per particle, per neighbour and per cell of the cell list."""
+    from above before anything is allocated: per particle, per neighbour, per cell of the cell list
+    and per candidate neighbour (the particles of a particle's own and adjacent cells, for which a
+    list build makes room: at most as many as close packing fits in them)."""
     reach = interaction_reach(radius, skin)
     neighbours = min(n, n * ball_volume(reach, len(box)) / math.prod(box) + 1)
     cells = math.prod(max(1.0, length / reach) for length in box)
-    return n * (BYTES_PER_PARTICLE + BYTES_PER_NEIGHBOUR * neighbours) + 16 * cells
+    cell_volume = math.prod(length / max(1, int(length // reach)) for length in box)
+    candidates = min(n, 3 ** len(box) * (CLOSE_PACKING[len(box)] * cell_volume / ball_volume(radius, len(box)) + 1))
+    return n * (BYTES_PER_PARTICLE + BYTES_PER_NEIGHBOUR * neighbours + 8 * candidates) + 16 * cells
 
 
 def lattice_positions(n: int, lengths: np.ndarray, dim: int, min_spacing: float) -> np.ndarray:

@@ -30,7 +30,8 @@ def test_the_list_holds_exactly_the_pairs_within_the_cutoff(dims, n, box, long):
         within = [k for k in np.flatnonzero((d**2).sum(1) < cutoff**2) if k != i]
         assert list(neighbors[start[i] : start[i + 1]]) == within, i
         for slot in range(start[i], start[i + 1]):
-            assert neighbors[reverse[slot]] == i
+            k = neighbors[slot]
+            assert start[k] <= reverse[slot] < start[k + 1] and neighbors[reverse[slot]] == i
 
 
 def test_a_kept_list_is_valid_only_for_what_it_was_built_for():
