@@ -134,6 +134,20 @@ def test_blow_up_stops_with_a_clear_error_and_keeps_the_file(tmp_path):
         assert len(traj) >= 1 and np.all(np.isfinite(traj[-1].particles.position))
 
 
+def test_a_velocity_gone_infinite_is_reported_at_the_same_step_by_one_call_and_by_calls_of_one_step():
+    """The step that went wrong, and the message, do not depend on how a run is cut into calls."""
+    reports = []
+    for every in (100, 1):
+        sim = passive(dim=2, n=64, dt=1e-3, law="linear")
+        sim.threads = 1  # one call for every = 100
+        sim.run(5, every=5)
+        sim.state.velocity[3, 0] = np.inf
+        with pytest.raises(SimulationError, match="infinite or NaN") as error:
+            sim.run(100, every=every)
+        reports.append((str(error.value), sim.state.step))
+    assert reports[0] == reports[1] and reports[0][1] == 5
+
+
 def test_walls_do_not_move_and_rub_the_fluid():
     particles = Particles.spheres(64)
     state = lattice_state(particles, 2, 0.6, seed=2)
