@@ -12,7 +12,7 @@ from fricgen.rng import _ZIG_F, _ZIG_R, _ZIG_W, fold_key, stream_key, ziggurat_n
 SAMPLES = 1_000_000
 
 
-@numba.njit(cache=True)
+@numba.njit  # not cached: a cached copy would keep the inlined rng code of before an edit of fricgen/rng.py
 def draws(seed, steps, indices, replica):
     """z[s, k] = ziggurat_normal(fold_key(stream_key(seed, s, 4), replica), indices[k]), as the engine draws them."""
     out = np.empty((steps.size, indices.size))
