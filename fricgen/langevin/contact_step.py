@@ -39,7 +39,7 @@ import numpy as np
 from derive.calculus import Calculus
 
 from ..rng import pair_key, uniform, ziggurat_normal
-from .neighbors import separation
+from .neighbors import offsets, separation, sort_by_key
 from .pairs import cross
 
 #: theta of each scheme (Calculus.index): where the calculus evaluates D within a step.
@@ -57,12 +57,11 @@ def find_contacts(pos, bodies, dyn, couplings, weight, lists, touching):
     start, neighbors = lists[0], lists[1]
     box, inv_box, dims, size = dyn.box, dyn.inv_box, dyn.dims, pos.shape[0]
     law = couplings.law  # bound here: taken from the tuple in the loop, each weight call would cost two atomic reference counts
-    first = np.zeros(size + 1, dtype=np.int64)
-    for i in range(size):
-        count = 0
+    counts = np.zeros(size, dtype=np.int64)
+    for i in numba.prange(size):
         for slot in range(start[i], start[i + 1]):
-            count += touching[slot]
-        first[i + 1] = first[i] + count
+            counts[i] += touching[slot]
+    first = offsets(counts)
     pairs, geometry = np.empty((first[size], 2), dtype=np.int64), np.empty((first[size], GEOMETRY))
     for i in numba.prange(size):
         p = first[i]
@@ -92,7 +91,7 @@ def colour_classes(pairs, size):
     words = (2 * degree.max()) // _WORD + 1 if size else 1  # greedy needs at most 2 max(degree) - 1 colours
     used = np.zeros((size, words), dtype=np.uint64)
     colour = np.empty(pairs.shape[0], dtype=np.int64)
-    counts = np.zeros(words * _WORD + 1, dtype=np.int64)
+    counts = np.zeros(words * _WORD, dtype=np.int64)
     for p in range(pairs.shape[0]):
         i, k = pairs[p, 0], pairs[p, 1]
         word = 0
@@ -104,14 +103,9 @@ def colour_classes(pairs, size):
         used[i, word] |= _ONE << np.uint64(bit)
         used[k, word] |= _ONE << np.uint64(bit)
         colour[p] = word * _WORD + bit
-        counts[colour[p] + 1] += 1
-    colours = colour.max() + 1 if pairs.shape[0] else 0
-    first = np.cumsum(counts[: colours + 1])
-    order, filled = np.empty(pairs.shape[0], dtype=np.int64), first[:-1].copy()
-    for p in range(pairs.shape[0]):
-        order[filled[colour[p]]] = p
-        filled[colour[p]] += 1
-    return order, first
+        counts[colour[p]] += 1
+    first = offsets(counts[: colour.max() + 1 if pairs.shape[0] else 0])
+    return sort_by_key(colour, first), first
 
 
 @numba.njit(inline="always", cache=True)

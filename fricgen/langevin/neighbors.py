@@ -55,10 +55,30 @@ def _offsets(n):
 
 
 @numba.njit(cache=True)
+def offsets(counts):
+    """CSR offsets of consecutive groups of sizes ``counts``: [0, counts[0], counts[0] + counts[1], ...]."""
+    out = np.zeros(counts.size + 1, dtype=np.int64)
+    for i in range(counts.size):
+        out[i + 1] = out[i] + counts[i]
+    return out
+
+
+@numba.njit(cache=True)
+def sort_by_key(keys, first):
+    """The indices of ``keys`` sorted by key, stably (the filling pass of a counting sort), given the
+    offsets ``first`` of the keys' counts: those of key g land in order[first[g]:first[g + 1]]."""
+    order, filled = np.empty(keys.size, dtype=np.int64), first[:-1].copy()
+    for j in range(keys.size):
+        order[filled[keys[j]]] = j
+        filled[keys[j]] += 1
+    return order
+
+
+@numba.njit(cache=True)
 def _cells(pos, box, dims, cutoff):
     """(cells per direction, cell of each particle, particles sorted by cell (stable), first of each
-    cell in that order, positions in that order): a counting sort, and the positions copied in cell
-    order so that a cell's particles are read from consecutive memory."""
+    cell in that order, positions in that order): the positions are copied in cell order so that a
+    cell's particles are read from consecutive memory."""
     n = np.ones(3, dtype=np.int64)
     for a in range(dims):
         n[a] = max(1, int(box[a] / cutoff))
@@ -70,18 +90,12 @@ def _cells(pos, box, dims, cutoff):
             c = min(max(c, 0), n[a] - 1)
             index = index * n[a] + c
         cell[i] = index
-    first = np.zeros(n[0] * n[1] * n[2] + 1, dtype=np.int64)
+    counts = np.zeros(n[0] * n[1] * n[2], dtype=np.int64)
     for i in range(pos.shape[0]):
-        first[cell[i] + 1] += 1
-    for c in range(first.size - 1):
-        first[c + 1] += first[c]
-    order, packed, filled = np.empty(pos.shape[0], dtype=np.int64), np.empty((pos.shape[0], 3)), first[:-1].copy()
-    for i in range(pos.shape[0]):
-        slot = filled[cell[i]]
-        order[slot] = i
-        packed[slot, 0], packed[slot, 1], packed[slot, 2] = pos[i, 0], pos[i, 1], pos[i, 2]
-        filled[cell[i]] += 1
-    return n, cell, order, first, packed
+        counts[cell[i]] += 1
+    first = offsets(counts)
+    order = sort_by_key(cell, first)
+    return n, cell, order, first, pos[order]
 
 
 @numba.njit(inline="always", cache=True)
@@ -157,15 +171,6 @@ def _reverse_slots(start, neighbors):
     return reverse
 
 
-@numba.njit(cache=True)
-def _offsets_of(counts):
-    """CSR offsets: [0, counts[0], counts[0] + counts[1], ...]."""
-    offsets = np.zeros(counts.size + 1, dtype=np.int64)
-    for i in range(counts.size):
-        offsets[i + 1] = offsets[i] + counts[i]
-    return offsets
-
-
 @numba.njit(parallel=True, cache=True)
 def build_neighbors(pos, box, dims, cutoff):
     """Full Verlet list of all pairs closer than ``cutoff``: CSR (start, neighbors) and ``reverse``,
@@ -177,12 +182,12 @@ def build_neighbors(pos, box, dims, cutoff):
     none = np.empty(0, dtype=np.int64)
     for i in numba.prange(size):
         counts[i] = _visit(i, pos, box, dims, cutoff * cutoff, cells, none, False)
-    room = _offsets_of(counts)
+    room = offsets(counts)
     scratch = np.empty(room[size], dtype=np.int64)
     for i in numba.prange(size):
         counts[i] = _visit(i, pos, box, dims, cutoff * cutoff, cells, scratch[room[i] : room[i + 1]], True)
         _sort_short(scratch[room[i] : room[i] + counts[i]])
-    start = _offsets_of(counts)
+    start = offsets(counts)
     neighbors = np.empty(start[size], dtype=np.int64)
     for i in numba.prange(size):
         neighbors[start[i] : start[i + 1]] = scratch[room[i] : room[i] + counts[i]]
