@@ -18,9 +18,9 @@ import time
 
 import numba
 import numpy as np
+from fricgen.generated.special import erfcx
 
 from fricgen.kernels import load_law_kernels
-from generated.special import erfcx
 
 SQRT_PI = math.sqrt(math.pi)
 

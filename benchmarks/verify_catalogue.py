@@ -2,7 +2,7 @@
 a new law in a fresh process with the lemma cache cold and warm.
 
 Targets: the whole catalogue, all calculi, under 60 s on the 2-core machine (issue 2); verify +
-generate of one new law in a new process under 10 s with a warm lemma cache (derive.lemma_cache).
+generate of one new law in a new process under 10 s with a warm lemma cache (fricgen.derive.noise.lemma_cache).
 Prints the one-off phase-space lemmas (per dimension and calculus: proven, then read from the cache)
 apart from the per-law work. The cache lives in a temporary folder (FRICGEN_CACHE), never the user's.
 
@@ -29,7 +29,7 @@ NEW_LAWS = {
 
 def lemmas() -> float:
     """Prove (or read) the law-independent facts through the cache; print each; return the total."""
-    from derive import lemma_cache
+    from fricgen.derive.noise import lemma_cache
 
     total = 0.0
     for dim in (3, 2):
@@ -46,7 +46,7 @@ def lemmas() -> float:
 
 
 def catalogue_run() -> None:
-    from derive import catalogue, derive_noise, verify
+    from fricgen.derive import catalogue, derive_noise, verify
 
     start = time.perf_counter()
     print("phase-space lemmas (once per process, or read from the cache):")
@@ -66,8 +66,8 @@ def catalogue_run() -> None:
 def child(folder: str, name: str) -> None:
     """In a fresh process: verify every calculus of the law, then generate it (which verifies again)."""
     start = time.perf_counter()
-    from derive import derive_noise, load_law, make_law, save_law, verify
-    from derive.emit import generate
+    from fricgen.derive import derive_noise, load_law, make_law, save_law, verify
+    from fricgen.derive.driver import generate
 
     timings = {"import": time.perf_counter() - start}
     friction, parameters = NEW_LAWS[name]

@@ -1,13 +1,22 @@
-"""Symbolic layer of fricgen (SymPy only): friction laws, noise derivation, verification, emission.
+"""The symbolic layer of fricgen (SymPy only), in three stages and one driver.
 
-Stages, each returning a new frozen object::
+1. **The law** (:mod:`fricgen.derive.law`): a friction law as data, its parameters and ranges, the
+   potentials, and the catalogues a law's name is looked up in.
+2. **The noise and its proof** (:mod:`fricgen.derive.noise`): D(u, w, r) from the zero-current
+   condition for a calculus, and the symbolic proof that it is right on the pair phase space.
+3. **The backends** (:mod:`fricgen.derive.backends`): Numba kernels (generated/) and a LAMMPS plugin,
+   printed by one printer and checked against the proof's reference values.
 
-    law = load_law("derive/catalogue/coulomb_newton.toml")   # or make_law(...), catalogue()
-    model = derive_noise(law, "ito")                          # D(u, w, r) for the calculus
-    report = verify(model)                                    # symbolic facts, report.verified
-    generate([law])                                           # Numba kernels in generated/
+The driver (:mod:`fricgen.derive.driver`) reads top to bottom::
 
-Names are resolved lazily, so that ``derive.lawdata`` (no SymPy) can be imported by the runtime.
+    law = load_law("laws/stribeck.toml")      # or make_law(...), catalogue()["coulomb_newton"]
+    model = derive_noise(law, "ito")          # D(u, w, r) for the calculus
+    report = verify(model)                    # symbolic facts and the kernel check: report.verified
+    generate(["stribeck"], catalogue="laws")  # Numba kernels in laws/generated/
+
+Names are resolved lazily, so that the plain-data modules (``fricgen.derive.calculus``,
+``fricgen.derive.law.lawdata``, ``fricgen.derive.law.catalogues``) can be imported by the runtime
+without SymPy.
 """
 
 from __future__ import annotations
@@ -15,21 +24,22 @@ from __future__ import annotations
 import importlib
 
 _EXPORTS = {
-    "CATALOGUE": "lawdata",
-    "FrictionLaw": "laws",
-    "LawError": "laws",
-    "Parameter": "laws",
-    "catalogue": "laws",
-    "load_law": "laws",
-    "make_law": "laws",
-    "save_law": "laws",
+    "CATALOGUE": "law.lawdata",
+    "FrictionLaw": "law.laws",
+    "LawError": "law.laws",
+    "Parameter": "law.laws",
+    "catalogue": "law.laws",
+    "load_law": "law.laws",
+    "make_law": "law.laws",
+    "save_law": "law.laws",
     "Calculus": "calculus",
-    "NoiseModel": "noise",
-    "contact_mobility": "noise",
-    "derive_noise": "noise",
-    "Report": "verification",
-    "verify": "verification",
-    "generate": "emit",
+    "NoiseModel": "noise.derivation",
+    "contact_mobility": "noise.derivation",
+    "derive_noise": "noise.derivation",
+    "Report": "noise.verification",
+    "prove": "noise.verification",
+    "verify": "driver",
+    "generate": "driver",
 }
 
 __all__ = sorted(_EXPORTS)
@@ -37,5 +47,9 @@ __all__ = sorted(_EXPORTS)
 
 def __getattr__(name: str):
     if name not in _EXPORTS:
-        raise AttributeError(f"module 'derive' has no attribute {name!r}")
-    return getattr(importlib.import_module(f"derive.{_EXPORTS[name]}"), name)
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    return getattr(importlib.import_module(f"{__name__}.{_EXPORTS[name]}"), name)
+
+
+def __dir__() -> list[str]:
+    return sorted([*globals(), *_EXPORTS])

@@ -8,10 +8,10 @@ subpackage's ``__init__`` is its public API:
 - ``fricgen.schema``, ``fricgen.errors``: typed configuration sections, one error family;
 - ``fricgen.langevin``: the Langevin engine of frictional spheres (2-D and 3-D);
 - ``fricgen.rods``: Brownian cluster dynamics of rods, with the exact theory;
-- ``fricgen.app``: the ``fricgen`` command line, run files, the demo.
+- ``fricgen.app``: the ``fricgen`` command line, runs, sweeps and studies (the demo, the thermostat check).
 
 The engines import only the kernel layer, the RNG, schema/errors and derive's plain-data modules
-(``derive.calculus``, ``derive.lawdata``); never each other, the application or SymPy
+(``fricgen.derive.calculus``, ``fricgen.derive.law.lawdata``); never each other, the application or SymPy
 (tests/test_layers.py). ``import fricgen`` itself loads nothing but the error family; it puts TBB
 where Numba finds it, sets the default thread count and clears Numba's cached code of the compiled
 layers when their sources changed (:func:`clear_stale_caches`).
@@ -20,6 +20,7 @@ layers when their sources changed (:func:`clear_stale_caches`).
 import ctypes
 import hashlib
 import importlib.metadata
+import importlib.util
 import os
 import warnings
 from pathlib import Path
@@ -30,8 +31,10 @@ except ImportError:  # Windows: no lock around the clearing
     fcntl = None
 
 #: The files whose compiled functions call each other: the engines, the kernel layer's compiled
-#: parts, and derive/calculus.py, whose constants are compiled in (paths relative to fricgen/).
-COMPILED_SOURCES = ("langevin", "rods", "kernels.py", "rng.py", "../derive/calculus.py")
+#: parts, and fricgen.derive.calculus, whose constants are compiled in (paths relative to fricgen/;
+#: derive/ lies beside fricgen/ in a source checkout and inside it once installed).
+_CALCULUS = os.path.relpath(importlib.util.find_spec("fricgen.derive.calculus").origin, Path(__file__).parent)
+COMPILED_SOURCES = ("langevin", "rods", "kernels.py", "rng.py", _CALCULUS)
 
 
 def _load_tbb() -> None:
@@ -64,7 +67,7 @@ def clear_stale_caches(root: Path, sources: tuple[str, ...] = COMPILED_SOURCES) 
     for name in sources:
         path = root / name
         for file in sorted(path.rglob("*.py")) if path.is_dir() else [path] if path.exists() else []:
-            digest.update(file.relative_to(root).as_posix().encode() + file.read_bytes())
+            digest.update(Path(os.path.relpath(file, root)).as_posix().encode() + file.read_bytes())
     stamp = root / "__pycache__" / "compiled-sources.sha256"
     try:
         stamp.parent.mkdir(exist_ok=True)

@@ -1,6 +1,6 @@
 """The kernel layer: the kernel ABI, and the one loader of generated kernels, refused when stale.
 
-The ABI is the Numba function type of each kind of generated kernel (derive.emit compiles every
+The ABI is the Numba function type of each kind of generated kernel (fricgen.derive.driver compiles every
 kernel for exactly its type, tests/codegen/test_abi.py checks it); the engines take kernels as
 first-class functions of these types, so one compiled engine serves every law and potential:
 
@@ -14,12 +14,12 @@ first-class functions of these types, so one compiled engine serves every law an
 ``params`` is a contiguous float64 array. :func:`no_weight` is the weight of laws without one.
 
 Generated kernels carry the hash of their source: a law's kernels that of its law file (and of
-derive/potentials.py when its weight is a potential), a potential's that of derive/potentials.py.
+derive/law/potentials.py when its weight is a potential), a potential's that of derive/law/potentials.py.
 If the source was edited since, loading fails with the command that regenerates them. After a
 regeneration in the same process (a notebook), the module is reloaded, so the new kernels take
 effect at once. SymPy is never imported here.
 
-A law's name is looked up on the search path of :mod:`derive.catalogues`: the user's law folders
+A law's name is looked up on the search path of :mod:`fricgen.derive.law.catalogues`: the user's law folders
 (:func:`user_laws` blocks, ``FRICGEN_LAWS``), then the built-in catalogue. The kernels of a user
 folder DIR are those generated into DIR/generated/ (``fricgen generate --laws DIR LAW``); potentials
 are built-in only.
@@ -40,8 +40,8 @@ import numba
 import numpy as np
 from numba import types
 
-from derive.catalogues import CatalogueError, find_law, generate_command, is_built_in, kernel_folder, user_laws
-from derive.lawdata import POSITIVE, Interval, LawFileError, potential_source_hash, read_law_data, source_hash, weight_potential
+from fricgen.derive.law.catalogues import CatalogueError, find_law, generate_command, is_built_in, kernel_folder, user_laws
+from fricgen.derive.law.lawdata import POSITIVE, Interval, LawFileError, potential_source_hash, read_law_data, source_hash, weight_potential
 
 from .errors import ConfigError, KernelError
 
@@ -176,11 +176,11 @@ def _import(module_name: str, missing: Callable[[], KernelError], what: str, rel
 
 
 def _kernel_package(catalogue: Path, missing: Callable[[], KernelError]) -> str:
-    """The module name of the package that holds a catalogue's kernels: ``generated`` for the built-in
+    """The module name of the package that holds a catalogue's kernels: ``fricgen.generated`` for the built-in
     catalogue; for a user folder DIR, DIR/generated/ imported by its path under a name of its own
     (stable: from the folder's path), so that Numba's cache and the reload after a regeneration work."""
     if is_built_in(catalogue):
-        return "generated"
+        return "fricgen.generated"
     folder = kernel_folder(catalogue)
     name = "fricgen_user_laws_" + hashlib.sha256(str(folder).encode()).hexdigest()[:16]
     if name not in sys.modules:
@@ -213,7 +213,7 @@ def load_law_kernels(name: str, catalogue: str | Path | None = None) -> LawKerne
     if module.SOURCE_HASH != digest:
         module = _import(module_name, missing, f"the kernels of law {name}", reload=True)  # regenerated since it was imported?
     if module.SOURCE_HASH != digest:
-        changed = str(path) if weight_potential(data) is None else f"{path} or derive/potentials.py (its weight {data['weight']})"
+        changed = str(path) if weight_potential(data) is None else f"{path} or derive/law/potentials.py (its weight {data['weight']})"
         raise KernelError(f"the kernels of law {name} are stale: {changed} changed after they were generated; run `{command}`")
     return LawKernels(name, module)
 
@@ -221,12 +221,12 @@ def load_law_kernels(name: str, catalogue: str | Path | None = None) -> LawKerne
 def load_potential(name: str) -> ModuleType:
     """Generated potential module (energy(x, params), force(x, params), PARAMETERS, DEFAULTS; external
     potentials also force_field(xs, params, out)); raises KernelError if missing or stale."""
-    module_name = f"generated.potentials.{name}"
+    module_name = f"fricgen.generated.potentials.{name}"
 
     def missing():
-        import generated.potentials
+        import fricgen.generated.potentials
 
-        there = sorted(p.stem for p in Path(generated.potentials.__file__).parent.glob("*.py") if p.stem != "__init__")
+        there = sorted(p.stem for p in Path(fricgen.generated.potentials.__file__).parent.glob("*.py") if p.stem != "__init__")
         return KernelError(f"no generated potential {name!r} (there are {there}): a new one needs `fricgen generate`")
 
     module = _import(module_name, missing, f"the kernels of potential {name}")
@@ -235,7 +235,7 @@ def load_potential(name: str) -> ModuleType:
         module = _import(module_name, missing, f"the kernels of potential {name}", reload=True)  # regenerated since it was imported?
     if getattr(module, "SOURCE_HASH", None) != digest:
         raise KernelError(
-            f"the kernels of potential {name} are stale: derive/potentials.py changed after they were generated; run `fricgen generate`"
+            f"the kernels of potential {name} are stale: derive/law/potentials.py changed after they were generated; run `fricgen generate`"
         )
     return module
 

@@ -1,7 +1,7 @@
 """What the Langevin engine simulates: typed sections, each checked once when it is created.
 
 The same sections are the ``[law]``, ``[thermostat]``, ``[active]`` and ``[bulk]`` tables of a
-``fricgen run`` file (fricgen.app.config), so a file, the Python API and a checkpoint carry one
+``fricgen run`` file (fricgen.app.run.config), so a file, the Python API and a checkpoint carry one
 configuration. Units: sigma = 1 (diameter of a sphere of radius 1/2), kT = 1, m = 1,
 t0 = sqrt(m sigma^2 / kT) (docs/physics.md#units-and-symbols).
 """
@@ -12,7 +12,7 @@ import dataclasses
 import math
 from dataclasses import dataclass, field
 
-from derive.calculus import CALCULI, Calculus
+from fricgen.derive.calculus import CALCULI, Calculus
 
 from ..schema import Section
 

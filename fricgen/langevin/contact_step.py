@@ -36,7 +36,7 @@ import math
 import numba
 import numpy as np
 
-from derive.calculus import Calculus
+from fricgen.derive.calculus import Calculus
 
 from ..rng import pair_key, uniform, ziggurat_normal
 from .neighbors import offsets, separation, sort_by_key

@@ -29,7 +29,7 @@ import numba
 import numpy as np
 from numba import types
 
-from derive.calculus import Calculus
+from fricgen.derive.calculus import Calculus
 
 from ..rng import CONTACT, SOLVENT, stream_key
 from .contact_step import contact_step

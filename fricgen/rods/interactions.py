@@ -1,6 +1,6 @@
 """The interactions of rods: the external field and the neighbour force, from generated kernels.
 
-The field is any generated external potential U(x; U0, lambda, ...) (derive/potentials.py: periodic
+The field is any generated external potential U(x; U0, lambda, ...) (derive/law/potentials.py: periodic
 with period lambda, checked symbolically when it is generated), the cosine (B-21) by default. The
 neighbour interaction is the sticky contact of the delta_eps representation (B-31/32; gamma = 0:
 hard rods) or any generated pair potential of range below 2 sigma (B-28). The stability condition

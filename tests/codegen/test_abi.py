@@ -1,14 +1,14 @@
-"""The kernel ABI: the signatures derive.emit prints are the Numba types declared in fricgen.kernels,
+"""The kernel ABI: the signatures fricgen.derive.driver prints are the Numba types declared in fricgen.kernels,
 and every generated kernel is compiled for exactly its type (so engines compiled for the types take
 any law's or potential's kernels as first-class functions)."""
 
 import numba
 import numpy as np
 import pytest
+from fricgen.derive.driver import CONTACT_SIGNATURE, GENERATED, SIGNATURES
 from numba.core.dispatcher import Dispatcher
 from numba.core.sigutils import normalize_signature
 
-from derive.emit import CONTACT_SIGNATURE, GENERATED, SIGNATURES
 from fricgen.kernels import (
     CONTACT_KERNEL,
     FIELD_KERNEL,
@@ -20,7 +20,7 @@ from fricgen.kernels import (
     no_weight,
 )
 
-#: The ABI type of each argument list of derive.emit.SIGNATURES.
+#: The ABI type of each argument list of fricgen.derive.driver.SIGNATURES.
 BY_ARGUMENTS = {
     "r, params": SCALAR_KERNEL,
     "x, params": SCALAR_KERNEL,
@@ -57,7 +57,7 @@ def generated_modules(kind: str) -> list[str]:
 
 def kernels_of(module) -> dict:
     """The public compiled kernels defined in a generated module (helpers such as _gaussian_tail are
-    private; erfcx is imported from generated.special)."""
+    private; erfcx is imported from fricgen.generated.special)."""
     return {
         name: value
         for name, value in vars(module).items()

@@ -6,14 +6,14 @@ import subprocess
 import sys
 from pathlib import Path
 
+import fricgen.derive.driver
 import pytest
+from fricgen.derive.driver import GENERATED, GenerationError, generate
+from fricgen.derive.law import lawdata
+from fricgen.derive.law.lawdata import CATALOGUE, POTENTIALS, read_law_data
+from fricgen.derive.noise.verification import Report
 
-import derive.emit
 import fricgen.kernels
-from derive import lawdata
-from derive.emit import GENERATED, GenerationError, generate
-from derive.lawdata import CATALOGUE, POTENTIALS, read_law_data
-from derive.verification import Report
 from fricgen.errors import ConfigError, FricgenError
 from fricgen.kernels import KernelError, load_law_kernels, load_potential
 
@@ -86,7 +86,7 @@ def test_a_law_file_edited_during_generation_leaves_stale_kernels(tmp_path, monk
         path.write_text(path.read_text().replace("default = 1.0", "default = 2.0"))
         return Report(model.law.name, str(model.calculus), model.closed_form, {"stand_in": True})
 
-    monkeypatch.setattr(derive.emit, "verify", verify_while_the_file_is_edited)
+    monkeypatch.setattr(fricgen.derive.driver, "verify", verify_while_the_file_is_edited)
     written, _ = generate(["linear"], catalogue=catalogue, output=tmp_path / "out")
     text = (tmp_path / "out" / "laws" / "linear.py").read_text()
     (emitted,) = re.findall(r"^SOURCE_HASH = '([0-9a-f]{64})'$", text, flags=re.MULTILINE)
@@ -98,7 +98,7 @@ def test_a_law_file_edited_during_generation_leaves_stale_kernels(tmp_path, monk
 
 @pytest.fixture
 def edited_potentials(tmp_path, monkeypatch):
-    """derive/potentials.py with WCA's 4 epsilon made 8 epsilon, in place of the real one for the loader."""
+    """derive/law/potentials.py with WCA's 4 epsilon made 8 epsilon, in place of the real one for the loader."""
     text = POTENTIALS.read_text()
     assert text.count("4 * eps * (") == 1
     edited = tmp_path / "potentials.py"
@@ -108,7 +108,7 @@ def edited_potentials(tmp_path, monkeypatch):
 
 
 def test_stale_potentials_are_refused_with_the_command(edited_potentials):
-    with pytest.raises(KernelError, match="kernels of potential wca are stale: derive/potentials.py changed.*`fricgen generate`"):
+    with pytest.raises(KernelError, match="kernels of potential wca are stale: derive/law/potentials.py changed.*`fricgen generate`"):
         load_potential("wca")
     with pytest.raises(KernelError, match="kernels of potential cosine are stale"):
         load_potential("cosine")
@@ -116,7 +116,7 @@ def test_stale_potentials_are_refused_with_the_command(edited_potentials):
 
 def test_laws_weighted_by_an_edited_potential_are_stale(edited_potentials):
     """Every catalogue law has the WCA weight w = -dU/dr: its kernels hold the old potential."""
-    with pytest.raises(KernelError, match="law coulomb are stale: .*derive/potentials.py \\(its weight wca\\).*fricgen generate coulomb"):
+    with pytest.raises(KernelError, match="law coulomb are stale: .*derive/law/potentials.py \\(its weight wca\\).*generate coulomb"):
         load_law_kernels("coulomb")
 
 
@@ -133,8 +133,8 @@ def test_unedited_potentials_load(tmp_path, monkeypatch):
 
 def test_generation_refuses_potentials_edited_after_import(edited_potentials, monkeypatch, tmp_path):
     """The imported potentials would be emitted with the hash of the edited file: refused."""
-    monkeypatch.setattr(derive.emit, "POTENTIALS_SOURCE", edited_potentials)
-    with pytest.raises(GenerationError, match="changed since derive.potentials was imported"):
+    monkeypatch.setattr(fricgen.derive.driver, "POTENTIALS_SOURCE", edited_potentials)
+    with pytest.raises(GenerationError, match="changed since fricgen.derive.law.potentials was imported"):
         generate(["linear"], output=tmp_path / "out")
     assert not (tmp_path / "out" / "potentials").exists()
 

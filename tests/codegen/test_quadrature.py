@@ -4,9 +4,8 @@ import math
 
 import numpy as np
 import pytest
-
-from derive.numeric_check import reference_amplitude
-from derive.symbols import kT, mu, r, w
+from fricgen.derive.law.symbols import kT, mu, r, w
+from fricgen.derive.noise.reference import reference_amplitude
 
 
 def integral_models(models):

@@ -9,10 +9,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from fricgen.derive.driver import generate
+from fricgen.derive.law.lawdata import CATALOGUE, POSITIVE, Interval
 
 import fricgen.kernels
-from derive.emit import generate
-from derive.lawdata import CATALOGUE, POSITIVE, Interval
 from fricgen.errors import ConfigError
 from fricgen.kernels import KernelError, LawKernels, load_law_kernels, load_potential
 
@@ -90,7 +90,7 @@ def failing_import(monkeypatch):
 
     def install(error):
         def fake(name, package=None):
-            if name.startswith("generated."):
+            if name.startswith("fricgen.generated."):
                 raise error
             return real(name, package)
 
@@ -108,13 +108,13 @@ def test_a_missing_numba_is_reported_as_such(failing_import):
 
 
 def test_missing_kernels_are_still_missing_kernels(failing_import, tmp_path):
-    failing_import(ModuleNotFoundError("No module named 'generated.laws.linear'", name="generated.laws.linear"))
+    failing_import(ModuleNotFoundError("No module named 'fricgen.generated.laws.linear'", name="fricgen.generated.laws.linear"))
     with pytest.raises(KernelError, match="no generated kernels for law linear: run `fricgen generate linear`"):
         load_law_kernels("linear", catalogue=CATALOGUE)
 
 
 def test_another_import_error_is_reported_with_its_cause(failing_import):
-    failing_import(ImportError("cannot import name 'erfcx' from 'generated.special'"))
-    expected = r"cannot import the kernels of law coulomb \(generated.laws.coulomb\): cannot import name 'erfcx'"
+    failing_import(ImportError("cannot import name 'erfcx' from 'fricgen.generated.special'"))
+    expected = r"cannot import the kernels of law coulomb \(fricgen.generated.laws.coulomb\): cannot import name 'erfcx'"
     with pytest.raises(KernelError, match=expected):
         load_law_kernels("coulomb")

@@ -11,11 +11,10 @@ import mpmath
 import numpy as np
 import pytest
 import sympy as sp
-
-from derive.noise import branches
-from derive.numeric_check import reference_amplitude
-from derive.potentials import EXTERNAL_POTENTIALS, PAIR_POTENTIALS
-from derive.symbols import kT, mu, r, u, w
+from fricgen.derive.law.potentials import EXTERNAL_POTENTIALS, PAIR_POTENTIALS
+from fricgen.derive.law.symbols import kT, mu, r, u, w
+from fricgen.derive.noise.derivation import branches
+from fricgen.derive.noise.reference import reference_amplitude
 
 CASES = [(1.0, 7.0, 0.01), (1.0, 7.0, 1.0), (0.5, 2.3, 8.4), (1.0, 7.0, 60.0)]  # (kT, mu, w)
 RNG = np.random.default_rng(20261122)
@@ -109,7 +108,7 @@ def test_weight_kernels_match_the_wca_force(laws, kernels):
 def test_potential_kernels_match_their_expressions(potential):
     import importlib
 
-    module = importlib.import_module(f"generated.potentials.{potential.name}")
+    module = importlib.import_module(f"fricgen.generated.potentials.{potential.name}")
     params = np.array(module.DEFAULTS)
     values = {potential.symbols[n]: v for n, v in potential.defaults.items()} | {kT: 1.0}
     energy = sp.lambdify(potential.variable, potential.energy.subs(values), modules="mpmath")

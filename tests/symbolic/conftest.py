@@ -1,13 +1,13 @@
 import os
 
 import pytest
-
-from derive import catalogue, derive_noise, lemma_cache, verify
+from fricgen.derive import catalogue, derive_noise, verify
+from fricgen.derive.noise import lemma_cache
 
 
 @pytest.fixture(scope="session", autouse=True)
 def lemma_cache_folder(tmp_path_factory):
-    """The proofs run against a fresh lemma cache (derive.lemma_cache), not the user's, unless
+    """The proofs run against a fresh lemma cache (fricgen.derive.noise.lemma_cache), not the user's, unless
     FRICGEN_CACHE is set (e.g. to reuse a warm cache while developing). The lemmas are then proven
     once per session: test_phase_space proves them anyway, and the in-process cache shares them."""
     chosen = os.environ.get(lemma_cache.CACHE_ENV)

@@ -1,10 +1,9 @@
 """The derived D reproduces the paper's closed forms exactly (symbolic equality)."""
 
 import sympy as sp
-
-from derive import derive_noise
-from derive.noise import Calculus
-from derive.symbols import kT, mu, u, w
+from fricgen.derive import derive_noise
+from fricgen.derive.law.symbols import kT, mu, u, w
+from fricgen.derive.noise.derivation import Calculus
 
 g, k, b = sp.symbols("gamma_f kappa_f beta_f", positive=True)
 

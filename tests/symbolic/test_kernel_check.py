@@ -1,4 +1,5 @@
-"""The printed kernels, run as plain Python by the verifier (derive.numeric_check), without Numba."""
+"""The printed kernels, run as plain Python by the Numba backend's accuracy check, without Numba, against the
+proof's reference values (fricgen.derive.noise.reference)."""
 
 import dataclasses
 import math
@@ -7,20 +8,21 @@ import sys
 
 import mpmath
 import pytest
-
-from derive import derive_noise
-from derive.numeric_check import KERNEL_CASES, execute, python_kernels, reference_amplitude, reference_points
-from derive.symbols import kT, mu, r, w
+from fricgen.derive import derive_noise
+from fricgen.derive.backends.numba_kernels.accuracy import python_kernels
+from fricgen.derive.backends.special_functions import execute
+from fricgen.derive.law.symbols import kT, mu, r, w
+from fricgen.derive.noise.reference import KERNEL_CASES, reference_amplitude, reference_points
 
 
 def test_checking_the_kernels_imports_no_numba():
     code = (
         "import sys\n"
-        "from derive import catalogue, derive_noise\n"
-        "from derive.numeric_check import python_kernels\n"
+        "from fricgen.derive import catalogue, derive_noise\n"
+        "from fricgen.derive.backends.numba_kernels.accuracy import python_kernels\n"
         "kernels = python_kernels(derive_noise(catalogue()['coulomb'], 'ito'))\n"
         "assert kernels['noise_amplitude_ito'](1.0, 1.0, 1.0, 7.0, 1.0, [5.0, 1.0, 1.0]) > 0\n"
-        "assert 'numba' not in sys.modules and 'fricgen' not in sys.modules and 'generated' not in sys.modules\n"
+        "assert not {'numba', 'fricgen.kernels', 'fricgen.generated.special'} & set(sys.modules)\n"
     )
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr

@@ -6,13 +6,12 @@ import time
 
 import pytest
 import sympy as sp
+from fricgen.derive import catalogue, load_law, make_law, save_law
+from fricgen.derive.errors import DeriveError
+from fricgen.derive.law.expressions import MAX_CHARS, MAX_DEPTH, MAX_NODES, parse_expression, time_limit
+from fricgen.derive.law.lawdata import CATALOGUE, LawFileError, read_law_data, source_hash
+from fricgen.derive.law.symbols import r, u, w
 from sympy.parsing.sympy_parser import parse_expr
-
-from derive import catalogue, load_law, make_law, save_law
-from derive.errors import DeriveError
-from derive.expressions import MAX_CHARS, MAX_DEPTH, MAX_NODES, parse_expression, time_limit
-from derive.lawdata import CATALOGUE, LawFileError, read_law_data, source_hash
-from derive.symbols import r, u, w
 
 GAMMA = {"gamma_f": {"default": 1.0}}
 

@@ -2,9 +2,8 @@
 
 import pytest
 import sympy as sp
-
-from derive import LawError, catalogue, contact_mobility, derive_noise, load_law, make_law, save_law
-from derive.symbols import u, w
+from fricgen.derive import LawError, catalogue, contact_mobility, derive_noise, load_law, make_law, save_law
+from fricgen.derive.law.symbols import u, w
 
 GAMMA = {"gamma_f": {"default": 1.0}}
 

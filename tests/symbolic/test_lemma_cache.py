@@ -8,8 +8,7 @@ import json
 
 import pytest
 import sympy as sp
-
-from derive import lemma_cache, phase_space
+from fricgen.derive.noise import lemma_cache, phase_space
 
 
 @pytest.fixture

@@ -1,6 +1,6 @@
 """A failed proof says what is wrong in words a user can act on."""
 
-from derive import derive_noise, make_law, verify
+from fricgen.derive import derive_noise, make_law, verify
 
 
 def test_a_jump_of_f_under_hk_is_named_with_its_place_and_the_fix():

@@ -3,7 +3,7 @@
 
 The noise model's own nu kT (NoiseModel.variance_scale) cannot vouch for itself: a D derived with a
 wrong nu kT solves the ODE written with that same wrong nu kT. The verifier therefore takes nu kT
-from the zero-current lemma on the pair phase space (derive.phase_space), and the blind spot that
+from the zero-current lemma on the pair phase space (fricgen.derive.noise.phase_space), and the blind spot that
 it closes is shown here first. Mutations are made by monkeypatching or dataclasses.replace, never by
 editing a source file.
 """
@@ -13,12 +13,14 @@ from fractions import Fraction
 
 import pytest
 import sympy as sp
-
-from derive import contact_mobility, derive_noise, emit, modules, verify
-from derive.calculus import Calculus
-from derive.noise import NoiseModel
-from derive.phase_space import pair_phase_space
-from derive.verification import lemma_scale, ode_residuals
+from fricgen.derive import contact_mobility, derive_noise, verify
+from fricgen.derive import driver
+from fricgen.derive.backends import special_functions
+from fricgen.derive.backends.numba_kernels import modules
+from fricgen.derive.calculus import Calculus
+from fricgen.derive.noise.derivation import NoiseModel
+from fricgen.derive.noise.phase_space import pair_phase_space
+from fricgen.derive.noise.verification import lemma_scale, ode_residuals
 
 CLOSED = ["coulomb", "coulomb_newton", "viscous_cubic"]
 INTEGRAL = ["smooth_coulomb"]
@@ -42,7 +44,7 @@ def kT_dropped(monkeypatch):
 
 @pytest.fixture
 def stratonovich_at_theta_0(monkeypatch):
-    """derive.calculus with theta = 0 for Stratonovich: its D becomes the Itô one."""
+    """fricgen.derive.calculus with theta = 0 for Stratonovich: its D becomes the Itô one."""
     theta = Calculus.theta
     monkeypatch.setattr(Calculus, "theta", property(lambda c: Fraction(0) if c is Calculus.STRATONOVICH else theta.fget(c)))
 
@@ -64,8 +66,8 @@ def test_dropping_kT_from_nu_kT_is_caught(laws, kT_dropped, name, calculus):
 
 
 def test_generate_refuses_the_kT_mutation(laws, kT_dropped):
-    with pytest.raises(emit.GenerationError, match="ode_residual"):
-        emit.verified_models(laws["coulomb_newton"])
+    with pytest.raises(driver.GenerationError, match="ode_residual"):
+        driver.verified_models(laws["coulomb_newton"])
 
 
 @pytest.mark.parametrize("name", ["coulomb", "coulomb_newton", "smooth_coulomb"])
@@ -144,10 +146,10 @@ def test_a_coarse_quadrature_is_caught_by_kernel_accuracy(laws, monkeypatch):
 
 def test_a_wrong_erfcx_is_caught_by_kernel_accuracy(laws, monkeypatch, tmp_path):
     """The convergent of generated/special.py's erfcx cut to its lowest 3 powers of x^2: wrong for large u."""
-    source = modules.SPECIAL_SOURCE.read_text()
+    source = special_functions.SPECIAL_SOURCE.read_text()
     assert "y, top = x * x, len(_NUMERATOR) - 1" in source
     broken = tmp_path / "special.py"
     broken.write_text(source.replace("y, top = x * x, len(_NUMERATOR) - 1", "y, top = x * x, 2"))
-    monkeypatch.setattr(modules, "SPECIAL_SOURCE", broken)
+    monkeypatch.setattr(special_functions, "SPECIAL_SOURCE", broken)
     report = verify(derive_noise(laws["coulomb"], "ito"))
     assert failed(report) == {"kernel_accuracy"}, report.checks

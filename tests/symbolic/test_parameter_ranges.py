@@ -1,18 +1,17 @@
 """Parameter ranges: a law file declares the admissible values of each parameter, f >= 0, real and
 finite is established for all of them (proven by SymPy, else checked on grids), and a law whose f
-fails somewhere in its ranges is refused with the parameter values (derive.ranges)."""
+fails somewhere in its ranges is refused with the parameter values (fricgen.derive.law.ranges)."""
 
 import math
 from pathlib import Path
 
+import fricgen.derive.law.ranges
 import pytest
 import sympy as sp
-
-import derive.ranges
-from derive import LawError, load_law, make_law, save_law
-from derive.lawdata import POSITIVE, Interval, LawFileError, parse_range
-from derive.laws import Parameter, law_text
-from derive.ranges import CHECKED_NUMERICALLY, PROVEN, range_values
+from fricgen.derive import LawError, load_law, make_law, save_law
+from fricgen.derive.law.lawdata import POSITIVE, Interval, LawFileError, parse_range
+from fricgen.derive.law.laws import Parameter, law_text
+from fricgen.derive.law.ranges import CHECKED_NUMERICALLY, PROVEN, range_values
 
 #: The velocity-weakening law with ranges that keep f >= 0 (kappa_d <= 2 <= kappa_s); not in the catalogue.
 FIXTURE = Path(__file__).with_name("fixtures") / "weakening.toml"
@@ -167,7 +166,7 @@ def test_without_array_evaluation_every_point_is_checked_at_30_digits(monkeypatc
     def unavailable(fast, points):
         raise TypeError("no array evaluation")
 
-    monkeypatch.setattr(derive.ranges, "_ranks", unavailable)
+    monkeypatch.setattr(fricgen.derive.law.ranges, "_ranks", unavailable)
     friction = "w*(2 - c*(1 + sin(u)))"
     refused("f is negative at", make_law, "x", friction, {"c": {"default": 0.5}}, weight="wca")
     assert make_law("x", friction, {"c": {"default": 0.5, "range": "(0, 1]"}}, weight="wca").range_check == CHECKED_NUMERICALLY
@@ -189,7 +188,7 @@ def test_range_values_cover_the_range():
 def test_the_weakening_fixture_verifies_within_its_ranges():
     """verify's numeric checks stay inside the declared ranges (kappa_d in [0, 2]: its default x 3 = 3
     would make f negative), so a law consistent over its ranges verifies in full."""
-    from derive import derive_noise, verify
+    from fricgen.derive import derive_noise, verify
 
     report = verify(derive_noise(load_law(FIXTURE), "ito"))
     assert report.verified, (report.checks, report.details)

@@ -2,9 +2,9 @@
 
 import pytest
 import sympy as sp
-
-from derive import phase_space
-from derive.phase_space import (
+from fricgen.derive.law.symbols import kT
+from fricgen.derive.noise import phase_space
+from fricgen.derive.noise.phase_space import (
     CALCULI_THETA,
     D_SYM,
     DD_SYM,
@@ -18,14 +18,13 @@ from derive.phase_space import (
     tangential_velocity,
     zero_current_lemma,
 )
-from derive.symbols import kT
 
 
 @pytest.mark.parametrize("dim", [2, 3])
 @pytest.mark.parametrize("calculus", ["ito", "stratonovich", "hk"])
 def test_zero_current_lemma(dim, calculus):
     """The identity holds, and the nu kT it reads off the current is (1 - theta) mu kT (F-21), theta
-    being the calculus' own (derive.calculus): the two definitions of the calculus agree."""
+    being the calculus' own (fricgen.derive.calculus): the two definitions of the calculus agree."""
     lemma = zero_current_lemma(dim, calculus)
     assert lemma.holds
     assert lemma.nu_over_mu == 1 - CALCULI_THETA[calculus]

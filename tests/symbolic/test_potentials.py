@@ -2,9 +2,8 @@
 
 import pytest
 import sympy as sp
-
-from derive.potentials import EXTERNAL_POTENTIALS, PAIR_POTENTIALS, Potential, check_external, x
-from derive.symbols import kT, r
+from fricgen.derive.law.potentials import EXTERNAL_POTENTIALS, PAIR_POTENTIALS, Potential, check_external, x
+from fricgen.derive.law.symbols import kT, r
 
 
 def test_sticky_force_is_b32():

@@ -5,11 +5,11 @@ one line; it never ends in a traceback."""
 import mpmath
 import pytest
 import sympy as sp
-
-from derive import LawError, derive_noise, make_law, verify
-from derive.noise import split
-from derive.numeric_check import python_kernels, reference_amplitude
-from derive.symbols import kT, mu, r, u, w
+from fricgen.derive import LawError, derive_noise, make_law, verify
+from fricgen.derive.backends.numba_kernels.accuracy import python_kernels
+from fricgen.derive.law.symbols import kT, mu, r, u, w
+from fricgen.derive.noise.derivation import split
+from fricgen.derive.noise.reference import reference_amplitude
 
 MIN_POWER = "Min(gamma_f*u**1.5, w*kappa_f)"
 WEIGHT_IN_R = "gamma_f*u*Piecewise((1, r < 1), (exp(-(r-1)/ell), True))"

@@ -4,10 +4,9 @@ import dataclasses
 
 import pytest
 import sympy as sp
-
-from derive import derive_noise, verify
-from derive.noise import Calculus, integral_amplitude
-from derive.symbols import kT, mu, u, w
+from fricgen.derive import derive_noise, verify
+from fricgen.derive.law.symbols import kT, mu, u, w
+from fricgen.derive.noise.derivation import Calculus, integral_amplitude
 
 ALL_CHECKS = {
     "ode_residual",

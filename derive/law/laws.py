@@ -1,6 +1,6 @@
 """Friction laws as data: a name, f(u, r) as a SymPy expression, parameters, an optional weight.
 
-A law file is plain TOML (see ``derive/catalogue/``)::
+A law file is plain TOML (see ``derive/law/catalogue/``)::
 
     name = "coulomb_newton"
     reference = "F-32"
@@ -18,9 +18,9 @@ A law file is plain TOML (see ``derive/catalogue/``)::
 f is the magnitude of the tangential contact force (units of force) as a function of the
 tangential speed u >= 0, the centre distance r and the weight value w = w(r). Parameters are real
 numbers in their ranges (within [0, oo); the positive reals unless ``range`` says otherwise), and f
-must be >= 0, real and finite for every combination of them (derive.ranges: proven by SymPy where it
+must be >= 0, real and finite for every combination of them (fricgen.derive.law.ranges: proven by SymPy where it
 can, else checked on a grid; ``FrictionLaw.range_check`` says which). Expressions are data, never
-run: see derive.expressions for their grammar (numbers, u, r, w, the parameters, pi, + - * / **, a
+run: see fricgen.derive.law.expressions for their grammar (numbers, u, r, w, the parameters, pi, + - * / **, a
 list of functions, Piecewise) and size limits.
 ``calculi`` lists the calculi the law claims to support (default: all three); a calculus is left
 out only with a physical reason, e.g. constant friction has f(0+) > 0, so the
@@ -39,8 +39,8 @@ from pathlib import Path
 import mpmath
 import sympy as sp
 
+from ..calculus import CALCULI
 from . import potentials
-from .calculus import CALCULI
 from .expressions import CONSTANTS, LawError, check_expression, check_parameter_name, expression_text, parse_expression, snippet, time_limit
 from .lawdata import CATALOGUE, POSITIVE, Interval, LawFileError, check_law_data, parse_range, read_law_data, source_hash, write_text_atomic
 from .ranges import check_ranges
@@ -82,10 +82,10 @@ class FrictionLaw:
         weight_source: the weight as written in the law file ("wca" or an expression).
         calculi: calculi the law supports.
         source: the friction expression as written.
-        source_hash: for a law read by :func:`load_law`, the source hash (derive.lawdata.source_hash)
+        source_hash: for a law read by :func:`load_law`, the source hash (fricgen.derive.law.lawdata.source_hash)
             of the very bytes it was built from; generated kernels carry it. Empty otherwise.
         range_check: how f >= 0, real and finite was established for every parameter value in the
-            ranges: "proven" (symbolically) or "checked numerically" (derive.ranges).
+            ranges: "proven" (symbolically) or "checked numerically" (fricgen.derive.law.ranges).
     """
 
     name: str
@@ -123,11 +123,11 @@ def make_law(
 
     Args:
         name: identifier (ASCII letters, digits, underscores; not starting with an underscore).
-        friction: f as text (parsed as data by :func:`derive.expressions.parse_expression`, never
+        friction: f as text (parsed as data by :func:`fricgen.derive.law.expressions.parse_expression`, never
             evaluated) or as a SymPy expression in u, r, w and the parameters.
         parameters: ``{name: {"default": x, "unit": ..., "description": ..., "range": "[0, 2]"}}``
             (range as in a law file, or an Interval) or Parameters.
-        weight: None, the name of a potential in :mod:`derive.potentials` (w = -dU/dr), or an
+        weight: None, the name of a potential in :mod:`fricgen.derive.law.potentials` (w = -dU/dr), or an
             expression in r.
         calculi: the calculi the law supports.
     """
@@ -240,7 +240,7 @@ def _weight(name: str, weight: str | None, params: tuple[Parameter, ...]) -> tup
 
 def validate(law: FrictionLaw) -> str:
     """Raise :class:`LawError` for a law without a consistent noise amplitude; else return how f >= 0
-    was established over the parameters' ranges ("proven" or "checked numerically", derive.ranges).
+    was established over the parameters' ranges ("proven" or "checked numerically", fricgen.derive.law.ranges).
 
     Checks: only known symbols; depends on u, w or r (a constant law needs its weight); w used only with a weight; f real and finite and
     f >= 0 for u >= 0 and every parameter value in the ranges (symbolically where SymPy decides it,

@@ -1,4 +1,4 @@
-"""On-disk cache of the law-independent facts of :mod:`derive.phase_space`.
+"""On-disk cache of the law-independent facts of :mod:`fricgen.derive.noise.phase_space`.
 
 Proving the zero-current lemma and the covariance identities (F-50) on the pair phase space takes
 30-40 s and does not depend on the law, so every ``verify``/``generate`` process would otherwise
@@ -8,8 +8,8 @@ are stored as small JSON files in a user cache folder:
 - ``$FRICGEN_CACHE`` if set (``off`` disables the cache: every process proves again),
 - else ``$XDG_CACHE_HOME/fricgen``, else ``~/.cache/fricgen``.
 
-Entries are keyed on a hash of the sources the proof depends on (derive/phase_space.py,
-derive/symbols.py and this module), the generator version (derive.lawdata.GENERATOR_VERSION) and
+Entries are keyed on a hash of the sources the proof depends on (derive/noise/phase_space.py,
+derive/law/symbols.py and this module), the generator version (fricgen.derive.law.lawdata.GENERATOR_VERSION) and
 the SymPy version. An entry is written atomically (a temporary file renamed into place); an entry
 that cannot be read, holds another key or has the wrong shape is ignored and the fact is proven
 again (and rewritten). A folder that cannot be written is not an error: the fact is just not kept.
@@ -28,12 +28,13 @@ from pathlib import Path
 
 import sympy as sp
 
+from ..law import symbols
+from ..law.lawdata import GENERATOR_VERSION
 from . import phase_space
-from .lawdata import GENERATOR_VERSION
 
 CACHE_ENV = "FRICGEN_CACHE"
 #: The sources whose bytes key the cache (besides the generator and SymPy versions).
-SOURCES = tuple(Path(__file__).with_name(name) for name in ("phase_space.py", "symbols.py", "lemma_cache.py"))
+SOURCES = (Path(phase_space.__file__), Path(symbols.__file__), Path(__file__))
 
 
 def cache_folder() -> Path | None:
@@ -124,7 +125,7 @@ def _lemma_from(facts: dict) -> phase_space.Lemma:
 
 @cache
 def zero_current(dim: int, calculus: str) -> phase_space.Lemma:
-    """:func:`derive.phase_space.zero_current_lemma`, read from the cache or proven and stored."""
+    """:func:`fricgen.derive.noise.phase_space.zero_current_lemma`, read from the cache or proven and stored."""
     name = f"zero_current_{dim}d_{calculus}"
     facts = read_entry(name)
     if facts is not None:
@@ -140,7 +141,7 @@ def zero_current(dim: int, calculus: str) -> phase_space.Lemma:
 
 @cache
 def covariance(dim: int) -> dict[str, bool]:
-    """:func:`derive.phase_space.covariance_identities`, read from the cache or proven and stored."""
+    """:func:`fricgen.derive.noise.phase_space.covariance_identities`, read from the cache or proven and stored."""
     name = f"covariance_{dim}d"
     facts = read_entry(name)
     if facts and all(isinstance(v, bool) for v in facts.values()):

@@ -1,42 +1,30 @@
-"""The numbers the engines use, checked: the printed noise-amplitude kernel against mpmath.
+"""Reference values of D: the noise amplitude evaluated independently of any printed kernel.
 
-derive never imports Numba or the runtime, so the kernel is checked as *code*: the module text
-that :func:`derive.modules.law_module` prints for the model is executed as plain Python, with
-``numba.njit`` replaced by an identity decorator and ``erfcx`` taken from the hand-written source
-that the generator copies (derive/kernel_sources/special.py, executed the same way). Its
-``noise_amplitude_<calculus>`` is compared with an independent evaluation of D:
+For each case of :data:`KERNEL_CASES` (kT != 1 among them, so that a lost kT cannot hide), D is
+evaluated at u = 0 (where D or its limit u -> 0+ is finite), at 1e-6 ... 1e3 sqrt(nu kT) and at
+the branch points of f and D (and 1e-6 either side):
 
 - closed form: the model's SymPy expression, evaluated by mpmath at 30 digits, the float inputs
-  as exact rationals (this checks the printer: the stable rewrites erfcx/expm1, constant folding,
-  CSE, branches and the guard at u = 0);
+  as exact rationals;
 - integral form: (F-22) by adaptive quadrature (mpmath.quad, 20 digits) of the law's f, with the
   nu kT that the zero-current lemma reads off the phase space (not the model's own; see
-  derive.verification), which also checks the kernel's Gauss–Legendre quadrature.
+  :mod:`fricgen.derive.noise.verification`).
 
-Points (:func:`reference_points`): u = 0 (where D or its limit u -> 0+ is finite), 1e-6 ... 1e3
-sqrt(nu kT) and the branch points of f and D (and 1e-6 either side), for each case of
-:data:`KERNEL_CASES` (kT != 1 among them, so that a lost kT cannot hide). The verifier also checks
-the sign and finiteness of D on these reference values. Pure Python raises where Numba's error
-model returns inf/nan (an overflowing exp, a division by zero); such a point fails the check.
+The proof uses these values to confirm that D is finite and >= 0; each backend checks its printed
+kernels against them (``kernel_accuracy`` of the Numba backend).
 """
 
 from __future__ import annotations
 
-import builtins
-import importlib
 import math
-import types
 from dataclasses import dataclass
 
 import mpmath
 import sympy as sp
 
-from . import modules
-from .noise import NoiseModel, branches, sign_changes, switches
-from .symbols import kT, mu, r, u, w
+from ..law.symbols import kT, mu, r, u, w
+from .derivation import NoiseModel, branches, sign_changes, switches
 
-#: Largest relative error of the printed kernel that the check accepts.
-KERNEL_TOLERANCE = 1e-8
 #: Cases (kT, mu, w, r, factor on every parameter default).
 KERNEL_CASES = ((1.0, 7.0, 1.0, 1.0, 1.0), (2.0, 7.0, 60.0, 1.05, 1.0), (0.3, 2.0, 0.05, 1.0, 0.5), (2.5, 3.5, 5.0, 1.0, 3.0))
 #: Speeds in units of sqrt(a), a = nu kT (sqrt(mu kT) when nu = 0).
@@ -45,49 +33,6 @@ SPEEDS = (1e-6, 1e-3, 0.1, 0.5, 1.0, 2.0, 5.0, 10.0, 30.0, 100.0, 300.0, 1000.0)
 DIGITS = 30
 #: Working precision of the quadrature of (F-22) (about 1e-20; the kernels' own error is ~1e-13).
 QUAD_DIGITS = 20
-
-
-class _Numba:
-    """Stands in for numba in the executed kernel code: ``njit`` leaves the function as it is."""
-
-    @staticmethod
-    def njit(*args, **kwargs):
-        if len(args) == 1 and callable(args[0]) and not kwargs:
-            return args[0]
-        return lambda function: function
-
-
-def execute(source: str, modules: dict[str, object]) -> dict:
-    """Run module ``source`` as plain Python; its imports may reach only ``modules`` (by the name as
-    written, with leading dots for relative imports). Returns the module's namespace."""
-
-    def importer(name, globals=None, locals=None, fromlist=(), level=0):
-        key = "." * level + name
-        if key not in modules:
-            raise ImportError(f"the checked kernel code may import only {sorted(modules)}, not {key!r}")
-        return modules[key]
-
-    namespace = {"__builtins__": {**vars(builtins), "__import__": importer}, "__name__": "derive_kernel_check"}
-    exec(compile(source, "<printed kernels>", "exec"), namespace)  # noqa: S102 - code printed by derive.modules
-    return namespace
-
-
-def special_namespace() -> dict:
-    """derive/kernel_sources/special.py (generated.special) run as plain Python: its functions and tables."""
-    return execute(modules.SPECIAL_SOURCE.read_text(), {"math": math, "numba": _Numba(), "numpy": importlib.import_module("numpy")})
-
-
-def python_kernels(model: NoiseModel) -> dict:
-    """The namespace of the law module that derive.modules prints for ``model`` (as generate writes
-    it), run as plain Python."""
-
-    special = types.ModuleType("special")
-    special.__dict__.update(special_namespace())
-    imports = {"math": math, "numba": _Numba(), "..special": special}
-    source = modules.law_module(model.law, {model.calculus.value: model}, "", "derive.verification")
-    if "numpy" in source:  # generated code may use numpy (tests/test_layers.py); loaded only when it does
-        imports["numpy"] = importlib.import_module("numpy")
-    return execute(source, imports)
 
 
 def reference_amplitude(model: NoiseModel, a: sp.Expr, values: dict) -> callable:
@@ -201,35 +146,3 @@ def sample_problem(points: list[Point]) -> str:
         if p.exact < 0:
             return f"D = {mpmath.nstr(p.exact, 6)} < 0 at {p.where}"
     return ""
-
-
-def kernel_accuracy(model: NoiseModel, points: list[Point]) -> tuple[float, str]:
-    """Largest relative error of the printed ``noise_amplitude_<calculus>`` against the reference
-    ``points``, and where it occurs (or what failed). Infinite when the kernel cannot be printed or
-    run, returns a non-finite value, or a reference value is missing."""
-    try:
-        kernel = python_kernels(model)[f"noise_amplitude_{model.calculus.value}"]
-    except Exception as error:  # noqa: BLE001 - any failure to print or run the code is a failed check
-        return math.inf, f"the kernel could not be printed or run: {type(error).__name__}: {error}"
-    worst, where = 0.0, ""
-    for p in points:
-        if p.exact is None:
-            return math.inf, f"no reference value at {p.where}: {p.problem}"
-        try:
-            got = kernel(p.speed, *p.arguments)
-        except (ArithmeticError, ValueError, TypeError) as error:
-            return math.inf, f"the kernel raised at {p.where}: {type(error).__name__}: {error}"
-        if not isinstance(got, int | float):
-            return math.inf, f"the kernel returned {got!r} at {p.where}"
-        error = _relative(got, p.exact)
-        if not error <= worst:
-            worst, where = error, f"{p.where}: kernel {got!r}, mpmath {mpmath.nstr(p.exact, 17)}"
-    return worst, where
-
-
-def _relative(got: float, exact) -> float:
-    if isinstance(exact, mpmath.mpc) or not mpmath.isfinite(exact) or not math.isfinite(got):
-        return math.inf
-    if exact == 0:
-        return abs(got)
-    return float(abs((mpmath.mpf(got) - exact) / exact))

@@ -20,7 +20,7 @@ velocities after the first half kick, and acts for dt in total (half at the end 
 the start of the next). In the half-step velocities this is Euler–Maruyama with D taken at the start
 of the step: the Itô calculus. Stratonovich (Heun) and Hänggi–Klimontovich (end point) would need a
 second force evaluation with the predicted velocities and the same z, which a pair style cannot do
-within one force computation; derive.lammps_module refuses them.
+within one force computation; fricgen.derive.backends.lammps_plugin.module refuses them.
 """
 
 from __future__ import annotations
@@ -93,7 +93,7 @@ const bool HAS_WEIGHT = ${has_weight};
 const double WCA_RANGE = 1.122462048309373;    // 2^(1/6)
 
 ${support}
-// --- the pair potential (derive/potentials.py) --------------------------------------------------
+// --- the pair potential (derive/law/potentials.py) --------------------------------------------------
 
 ${potential}
 // --- the law's kernels (derive, verified: ${verified}) -------------------------------------------

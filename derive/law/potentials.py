@@ -23,7 +23,7 @@ import sympy as sp
 
 from .symbols import kT, r
 
-#: The text this module was imported from: generated potentials carry its hash (derive.lawdata.potential_source_hash).
+#: The text this module was imported from: generated potentials carry its hash (fricgen.derive.law.lawdata.potential_source_hash).
 SOURCE = Path(__file__).read_bytes()
 
 x = sp.Symbol("x", real=True)

@@ -4,8 +4,8 @@ Piece j covers [j WIDTH, (j + 1) WIDTH) and holds the interpolant of erfcx at th
 Chebyshev points of that interval, as coefficients of powers of t = x - (j + 1/2) WIDTH (lowest
 first), computed with mpmath at 40 digits and rounded to the nearest double. The interpolation
 error is below 3e-16 relative (|t| <= WIDTH / 2 = 1/8 and erfcx is entire). The literal table in
-derive/kernel_sources/special.py is this function's output; tests/codegen/test_special.py checks
-that they agree. Print it with ``python -m derive.erfcx_pieces``.
+derive/backends/special_functions/special.py is this function's output; tests/codegen/test_special.py checks
+that they agree. Print it with ``python -m fricgen.derive.backends.special_functions.pieces``.
 """
 
 from __future__ import annotations

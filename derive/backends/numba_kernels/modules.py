@@ -1,43 +1,50 @@
 """The text of every generated module: a law's kernels, a potential's, the special functions.
 
-Printing only, nothing written: :mod:`derive.emit` writes these texts into ``generated/``, and
-:mod:`derive.numeric_check` runs the text of a law module as plain Python to check its numbers
-against mpmath, so both take the same code from here.
+Printing only, nothing written: :mod:`fricgen.derive.driver` writes these texts into ``generated/``,
+and :mod:`.accuracy` runs the text of a law module as plain Python to check its numbers against
+mpmath, so both take the same code from here.
 """
 
 from __future__ import annotations
 
 import hashlib
-from pathlib import Path
 
 import sympy as sp
 from sympy.integrals.quadrature import gauss_legendre
 
-from . import potentials
+from ...law import potentials
+from ...law.lawdata import potential_source_hash
+from ...law.laws import FrictionLaw
+from ...law.potentials import EXTERNAL_POTENTIALS, PAIR_POTENTIALS, Potential
+from ...law.symbols import kT, s, u
+from ...noise.derivation import NoiseModel, switches
+from ..printing import (
+    FORMULA_LIMIT,
+    KernelPrinter,
+    compact,
+    cut,
+    equation,
+    fold_constants,
+    header,
+    short_formula,
+    stabilize,
+    zero_speed_limit,
+    zero_speed_note,
+)
+from ..special_functions import SPECIAL_SOURCE
 from .kernel_code import (
     CONTACT_SIGNATURE,
     FIELD_KERNEL,
     INDENT,
     body,
-    header,
     quote_doc,
     ranges_literal,
     tail_kernels,
     zero_speed_guard,
-    zero_speed_limit,
-    zero_speed_note,
 )
 from .kernel_code import decorator as _decorator
-from .lawdata import potential_source_hash
-from .laws import FrictionLaw
-from .noise import NoiseModel, switches
-from .potentials import EXTERNAL_POTENTIALS, PAIR_POTENTIALS, Potential
-from .printer import FORMULA_LIMIT, KernelPrinter, compact, cut, equation, fold_constants, short_formula, stabilize
-from .symbols import kT, s, u
 
-SPECIAL_SOURCE = Path(__file__).with_name("kernel_sources") / "special.py"
-
-#: Gauss–Legendre order of the integral-form kernels (see derive.kernel_code.TAIL_KERNEL).
+#: Gauss–Legendre order of the integral-form kernels (see fricgen.derive.backends.numba_kernels.kernel_code.TAIL_KERNEL).
 QUADRATURE_ORDER = 10
 
 
@@ -172,8 +179,8 @@ def potential_module(potential: Potential) -> str:
     var = str(potential.variable)
     top = header(
         [
-            f"Source: potential '{potential.name}' (derive/potentials.py, {potential.reference})",
-            f"Source hash: {digest} (of derive/potentials.py, checked by fricgen.kernels.load_potential)",
+            f"Source: potential '{potential.name}' (derive/law/potentials.py, {potential.reference})",
+            f"Source hash: {digest} (of derive/law/potentials.py, checked by fricgen.kernels.load_potential)",
             "Regenerate: fricgen generate",
         ]
     )
@@ -200,7 +207,8 @@ def _special_hash() -> str:
 
 def special_module() -> str:
     return (
-        header([f"Source: derive/kernel_sources/special.py (hand-written numerics), hash {_special_hash()}"]) + SPECIAL_SOURCE.read_text()
+        header([f"Source: derive/backends/special_functions/special.py (hand-written numerics), hash {_special_hash()}"])
+        + SPECIAL_SOURCE.read_text()
     )
 
 

@@ -1,12 +1,12 @@
 """C++ kernels of a verified law for the LAMMPS pair style: SymPy's C++ printer subclassed like
-:class:`derive.printer.KernelPrinter`, the same stable rewrites, the same guards at u = 0, and the
-quadrature of (F-22) ported from derive.kernel_code (TAIL_KERNEL, SPLIT_TAIL_KERNEL).
+:class:`fricgen.derive.backends.printing.KernelPrinter`, the same stable rewrites, the same guards at u = 0, and the
+quadrature of (F-22) ported from fricgen.derive.backends.numba_kernels.kernel_code (TAIL_KERNEL, SPLIT_TAIL_KERNEL).
 
 Every kernel has the signature of its Numba twin, ``double name(double u, double w, double r, const
 double *params)`` etc., with ``params`` in the order of the law's parameters, and lives in an
 anonymous namespace of the pair style's .cpp file (two plugins loaded together never share a
 symbol). The hand-written numerics, erfcx and the counter-based normals of fricgen.rng, are
-:func:`support`; :mod:`derive.lammps_module` assembles the files.
+:func:`support`; :mod:`fricgen.derive.backends.lammps_plugin.module` assembles the files.
 """
 
 from __future__ import annotations
@@ -17,16 +17,15 @@ import sympy as sp
 from sympy.integrals.quadrature import gauss_legendre
 from sympy.printing.cxx import CXX17CodePrinter
 
-from .kernel_code import zero_speed_guard, zero_speed_limit, zero_speed_note
-from .laws import FrictionLaw
-from .noise import NoiseModel, switches
-from .numeric_check import special_namespace
-from .potentials import PAIR_POTENTIALS, Potential
-from .printer import branch_cse, compact, cut, equation, fold_constants, stabilize
-from .symbols import s, u
+from ...law.laws import FrictionLaw
+from ...law.potentials import PAIR_POTENTIALS, Potential
+from ...law.symbols import s, u
+from ...noise.derivation import NoiseModel, switches
+from ..printing import branch_cse, compact, cut, equation, fold_constants, stabilize, zero_speed_limit, zero_speed_note
+from ..special_functions import special_namespace
 
 INDENT = "  "
-#: C++ parameter lists of the kernel signatures (the Python kernels' argument names, as in derive.kernel_code.SIGNATURES).
+#: C++ parameter lists of the kernel signatures (the Python kernels' argument names, as in the Numba backend's SIGNATURES).
 SIGNATURES = {
     "r, params": "double r, const double *params",
     "u, w, r, params": "double u, double w, double r, const double *params",
@@ -45,7 +44,7 @@ class CxxKernelPrinter(CXX17CodePrinter):
     def _print_erfcx(self, expr):
         return f"fricgen_erfcx({self._print(expr.args[0])})"
 
-    def _print_expm1_given_exp(self, expr):  # as generated.special.expm1_given_exp
+    def _print_expm1_given_exp(self, expr):  # as fricgen.generated.special.expm1_given_exp
         e, x = (self._print(a) for a in expr.args)
         return f"(({x}) < -0.6931471805599453 ? ({e}) - 1.0 : std::expm1({x}))"
 
@@ -106,7 +105,7 @@ def _statements(expr: sp.Expr, printer: CxxKernelPrinter, depth: int) -> list[st
 
 
 def _body(expr: sp.Expr, printer: CxxKernelPrinter) -> list[str]:
-    """A top-level Piecewise becomes ``if`` branches, each with its own CSE (as derive.kernel_code.body)."""
+    """A top-level Piecewise becomes ``if`` branches, each with its own CSE (as fricgen.derive.backends.numba_kernels.kernel_code.body)."""
     if not isinstance(expr, sp.Piecewise):
         return _statements(expr, printer, 1)
     lines = []
@@ -118,8 +117,8 @@ def _body(expr: sp.Expr, printer: CxxKernelPrinter) -> list[str]:
 
 
 def _guard(limit: sp.Expr | None) -> list[str]:
-    """derive.kernel_code.zero_speed_guard in C++."""
-    if not zero_speed_guard(limit):
+    """``if (u <= 0.0) return <limit u -> 0+>;`` (0 if infinite or unknown); nothing for None (printing.zero_speed_limit)."""
+    if limit is None:
         return []
     value = limit if limit.is_finite else sp.Integer(0)
     return [f"{INDENT}if (u <= 0.0) return {CxxKernelPrinter().doprint(fold_constants(value))};"]
@@ -255,7 +254,7 @@ inline double next_cut(double u, double lo, double hi, double w, double r, const
 
 _TAIL = """// (1/a) int_u^oo f(s) exp(-(s^2 - u^2)/(2a)) ds (F-22), with t = s - u: {order}-point Gauss-Legendre on the
 // panels [0, h], [h, 2h], [2h, 4h], ... with h = a / (u + sqrt(a)) / 256, until the Gaussian weight
-// exp(-(2ut + t^2)/(2a)) is below exp(-46){split} (derive.kernel_code's _gaussian_tail, step for step).
+// exp(-(2ut + t^2)/(2a)) is below exp(-46){split} (fricgen.derive.backends.numba_kernels.kernel_code's _gaussian_tail, step for step).
 inline double gaussian_tail(double u, double a, double w, double r, const double *params)
 {{
   const double h = a / (u + std::sqrt(a)) / 256.0;
@@ -286,7 +285,7 @@ _SPLIT_PANELS = """    double start = lo;
 
 
 def tail_kernels(order: int, count: int) -> str:
-    """The quadrature of (F-22) for a law with ``count`` switch functions (derive.noise.switches)."""
+    """The quadrature of (F-22) for a law with ``count`` switch functions (fricgen.derive.noise.derivation.switches)."""
     if count == 0:
         return "\n".join([quadrature_constants(order), _TAIL.format(order=order, split="", panels=_PANELS.format(order=order))])
     parts = [quadrature_constants(order), _PANEL.format(order=order)]
@@ -310,8 +309,8 @@ inline double fricgen_powi(double x, int n)
   }
 }
 
-// Scaled complementary error function exp(x^2) erfc(x) (derive/kernel_sources/special.py, step for step):
-// on 0 <= x < 4 the degree-12 piece of width 1/4 that holds x (derive/erfcx_pieces.py) by Estrin's
+// Scaled complementary error function exp(x^2) erfc(x) (derive/backends/special_functions/special.py, step for step):
+// on 0 <= x < 4 the degree-12 piece of width 1/4 that holds x (derive/backends/special_functions/pieces.py) by Estrin's
 // scheme, Laplace's continued fraction beyond as its 20-term convergent, erfcx(-x) = 2 exp(x^2) - erfcx(x).
 const double ERFCX_PIECES[${pieces}][${terms}] = {
 ${table}
@@ -378,7 +377,7 @@ inline void normal_pair_at(uint64_t base, uint64_t i, uint64_t k, uint64_t count
 
 
 def support() -> str:
-    """The hand-written numerics in C++, with the tables of generated.special."""
+    """The hand-written numerics in C++, with the tables of fricgen.generated.special."""
     special = special_namespace()
     pieces = special["_PIECES"]
     return SUPPORT.substitute(

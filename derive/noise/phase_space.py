@@ -19,7 +19,7 @@ leaves each law with the scalar ODE (F-20). X is not assumed: it is read off the
 coefficient of dD/du, a function of the symbolic masses, inertias, radii and kT) and then proven
 to hold on every component; it comes out as X = nu kT with nu = (1 - theta) mu, so the calculus
 alone (its definition F-47..49) fixes theta. The verifier uses this X, never the noise model's own
-nu kT, for the residual of each law (derive.verification).
+nu kT, for the residual of each law (fricgen.derive.noise.verification).
 
 The physics: docs/physics.md#zero-probability-current-proved-symbolically.
 """
@@ -31,8 +31,8 @@ from functools import cache
 
 import sympy as sp
 
-from .calculus import Calculus
-from .symbols import kT
+from ..calculus import Calculus
+from ..law.symbols import kT
 
 
 @dataclass(frozen=True)

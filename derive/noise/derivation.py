@@ -31,10 +31,10 @@ from dataclasses import dataclass, field
 import mpmath
 import sympy as sp
 
-from .calculus import Calculus
-from .expressions import snippet, time_limit
-from .laws import FrictionLaw, LawError
-from .symbols import kT, mu, r, s, u, w
+from ..calculus import Calculus
+from ..law.expressions import snippet, time_limit
+from ..law.laws import FrictionLaw, LawError
+from ..law.symbols import kT, mu, r, s, u, w
 
 
 def contact_mobility(m_i, m_k, radius_i, radius_k, inertia_i=None, inertia_k=None) -> sp.Expr:

@@ -1,6 +1,6 @@
 """Where laws come from: the catalogues (folders of law files) that a law's name is looked up in.
 
-The search path is the user's law folders, then the built-in catalogue derive/catalogue/. User
+The search path is the user's law folders, then the built-in catalogue derive/law/catalogue/. User
 folders come from :func:`user_laws` blocks (``fricgen ... --laws DIR``, a run configuration's
 ``law.folder``) and from the environment variable ``FRICGEN_LAWS`` (one folder, or several joined
 by os.pathsep), read at every look-up. A name is unique on the path: a user law may not take the
@@ -15,19 +15,21 @@ the runtime's kernel loader uses this module.
 from __future__ import annotations
 
 import contextlib
+import importlib.resources
 import os
 import shlex
 from collections.abc import Iterator, Sequence
 from contextvars import ContextVar
 from pathlib import Path
 
-from .errors import DeriveError
+from ..errors import DeriveError
 from .lawdata import CATALOGUE
 
 #: The environment variable that names user law folders (os.pathsep-separated).
 LAWS_ENV = "FRICGEN_LAWS"
-#: The package of the built-in catalogue's kernels (and of the potentials).
-GENERATED = Path(__file__).resolve().parent.parent / "generated"
+#: The package of the built-in catalogue's kernels (and of the potentials), fricgen.generated: the
+#: repository's generated/ in a source checkout (an editable install), or the installed package's.
+GENERATED = Path(str(importlib.resources.files("fricgen.generated")))
 _BUILT_IN = CATALOGUE.resolve()
 _ACTIVE: ContextVar[tuple[Path, ...]] = ContextVar("fricgen_user_laws", default=())
 
@@ -54,6 +56,14 @@ def kernel_folder(catalogue: str | Path) -> Path:
     """Where the kernels of a catalogue's laws are generated: the package's generated/ for the built-in
     catalogue, DIR/generated for a user folder DIR."""
     return GENERATED if is_built_in(catalogue) else Path(catalogue).resolve() / "generated"
+
+
+def source_checkout() -> bool:
+    """Whether fricgen runs from a source checkout (generated/ beside derive/ and pyproject.toml, as in
+    the repository), where the built-in catalogue's kernels may be regenerated; an installed package
+    is never written to."""
+    root = GENERATED.parent
+    return (root / "pyproject.toml").is_file() and (root / "derive" / "law" / "catalogue").is_dir()
 
 
 def generate_command(name: str, catalogue: str | Path = CATALOGUE) -> str:
@@ -130,6 +140,7 @@ __all__ = [
     "kernel_folder",
     "law_folder",
     "law_names",
+    "source_checkout",
     "laws_by_catalogue",
     "user_folders",
     "user_laws",

@@ -1,8 +1,8 @@
 """Law files as plain data, without SymPy: reading, the schema, and the source hashes of laws and potentials.
 
 The runtime's kernel loader uses this module to detect stale kernels (a law file or
-derive/potentials.py edited after the kernels were generated) without importing SymPy, so it must
-stay free of SymPy imports: a potential's hash is taken over the bytes of derive/potentials.py (a
+derive/law/potentials.py edited after the kernels were generated) without importing SymPy, so it must
+stay free of SymPy imports: a potential's hash is taken over the bytes of derive/law/potentials.py (a
 file read, not an import).
 """
 
@@ -18,8 +18,8 @@ import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
-from .calculus import CALCULI
-from .errors import DeriveError
+from ..calculus import CALCULI
+from ..errors import DeriveError
 
 #: Version of the code generator; part of every source hash, bump when emitted code changes.
 #: 2: RANGES (the parameters' admissible ranges) in law modules; quadrature cut at branch points.
@@ -28,7 +28,7 @@ from .errors import DeriveError
 GENERATOR_VERSION = 4
 
 CATALOGUE = Path(__file__).with_name("catalogue")
-#: The source of the potentials (derive.potentials), hashed as bytes by potential_source_hash.
+#: The source of the potentials (fricgen.derive.law.potentials), hashed as bytes by potential_source_hash.
 POTENTIALS = Path(__file__).with_name("potentials.py")
 #: Largest law file read, in bytes (a law is a few hundred bytes; its expressions at most 2000 characters).
 MAX_LAW_FILE = 64 * 1024
@@ -127,7 +127,7 @@ def check_law_data(data: dict, path: str | Path) -> None:
 
     Raises LawFileError naming the first problem, on one line. A parameter's ``range`` is read here
     (:func:`parse_range`) and must hold its default; the other values (an expression, a parameter's
-    name or default, the law's name) are checked by derive.laws.make_law.
+    name or default, the law's name) are checked by fricgen.derive.law.laws.make_law.
     """
     unknown = sorted(set(data) - set(LAW_KEYS))
     if unknown:
@@ -188,7 +188,7 @@ def write_text_atomic(path: Path, text: str, overwrite: bool = True) -> None:
 
 
 def potential_source_hash(name: str, source: Path | bytes | None = None) -> str:
-    """sha256 of the exact bytes of derive/potentials.py, the potential's name and the generator version.
+    """sha256 of the exact bytes of derive/law/potentials.py, the potential's name and the generator version.
 
     ``source``: the text of the potentials module as bytes, or the path of a file holding it;
     :data:`POTENTIALS` by default (looked up at call time). Any edit of the file, even a comment,
@@ -205,7 +205,7 @@ def weight_potential(data: dict) -> str | None:
     """The potential a law's weight may name (w = -dU/dr): the weight if it is a bare name, else None.
 
     A bare name that is an expression (``weight = "r"``) counts too: its law's hash then covers
-    derive/potentials.py needlessly, which costs a regeneration, never a stale kernel.
+    derive/law/potentials.py needlessly, which costs a regeneration, never a stale kernel.
     """
     weight = data.get("weight")
     return weight if isinstance(weight, str) and weight.isidentifier() else None
