@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import argparse
 
+from fricgen.app import thermostat_check
 from fricgen.errors import SimulationError
-from fricgen.langevin import thermostat_check
 
 #: (law, parameter overrides): the catalogue at its defaults, and stiffer linear friction.
 LAWS = [

@@ -13,7 +13,7 @@ timed run (after a 500-step warm-up, from LAMMPS's "Loop time"), medians over th
 LAMMPS runs under `mpirun -np 1` and `-np 2` (OMP_NUM_THREADS=1), fricgen on 1 and 2 Numba threads
 (2 only if NUMBA_NUM_THREADS allows). Printed: each rate, the plugin's cost over frictionless LAMMPS,
 its strong scaling 1 -> 2 ranks, and the plugin against fricgen's engine. LAMMPS and the plugin are
-found and built as `fricgen lammps coulomb_newton --build` does (fricgen.app.lammps).
+found and built as `fricgen lammps coulomb_newton --build` does (fricgen.app.cli.lammps).
 
 Run: python benchmarks/lammps_plugin.py [--repeats 3] [--steps 1000]
 """
@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numba
 
-from fricgen.app.lammps import build_plugin, locate_lammps, plugin_folder
+from fricgen.app.cli.lammps import build_plugin, locate_lammps, plugin_folder
 from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, Thermostat, lattice_state
 
 N = 10_000

@@ -20,8 +20,8 @@ from pathlib import Path
 
 from matplotlib.figure import Figure
 
-from fricgen.app.mips import Mips, draw_histogram, draw_snapshot, read_frames
-from fricgen.app.runner import execute, plan
+from fricgen.app.run.runner import execute, plan
+from fricgen.app.studies.mips import Mips, draw_histogram, draw_snapshot, read_frames
 
 MODELS = (("without contact noise", "false", "tab:red"), ("with contact noise (consistent)", "true", "tab:blue"))
 

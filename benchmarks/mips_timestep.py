@@ -18,7 +18,7 @@ import time
 import freud
 import numpy as np
 
-from fricgen.app.mips import Frame, detect
+from fricgen.app.studies.mips import Frame, detect
 from fricgen.errors import SimulationError
 from fricgen.langevin.analysis import block_estimate, temperatures
 from fricgen.langevin.simulation import Simulation

@@ -1,6 +1,6 @@
 """Fig. 6 of the paper at reduced cost: slip length b and viscosity eta of Poiseuille flow in the slit
 against gamma_f (kappa_f = 5) and kappa_f (gamma_f = 6), the linear-response check (F and 2F), and
-eta of the same fluid from the transverse currents of a periodic bulk (fricgen.app.viscosity).
+eta of the same fluid from the transverse currents of a periodic bulk (fricgen.app.studies.viscosity).
 
 Reduced set-up (docs/poiseuille.md): the paper's slit (walls at y = +-8.5847, phi = 0.15 of the
 accessible volume, no solvent, Coulomb–Newton, Ito, dt = 1e-3) with L_x = L_z = 10 (N = 435 instead
@@ -26,10 +26,10 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
-from fricgen.app.config import RunConfig, RunLaw
-from fricgen.app.observables import read_table
-from fricgen.app.poiseuille import fit_slit_run, frame_errors
-from fricgen.app.viscosity import bulk_config, measure_bulk_viscosity, transverse_viscosity
+from fricgen.app.run.config import RunConfig, RunLaw
+from fricgen.app.run.observables import read_table
+from fricgen.app.studies.poiseuille import fit_slit_run, frame_errors
+from fricgen.app.studies.viscosity import bulk_config, measure_bulk_viscosity, transverse_viscosity
 from fricgen.langevin.analysis import block_estimate
 from fricgen.schema import structure
 

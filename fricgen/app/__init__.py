@@ -1,16 +1,15 @@
-"""The application layer: the ``fricgen`` command line and what it runs for a user.
-
-Modules: ``cli`` (the commands), ``arguments`` (one-line parser errors, negative numbers as
-values, errors named by flags), ``outputs`` (output folders checked before a run, valid JSON),
-``config`` (``fricgen run`` files: the engine's sections plus system, walls, run, output),
-``build`` (a validated file to a simulation at step 0), ``runner`` (outputs, progress, Ctrl-C,
-resume), ``observables`` (CSV tables), ``demo`` and ``plots`` (the main job), ``progress``,
-``noise`` (``fricgen noise``), ``rods_study`` (``fricgen bcd``), ``examples/`` (bundled configurations).
-It uses both engines; neither engine imports it.
+"""The application layer: the ``fricgen`` command line and what it runs for a user, grouped by what
+a user does: ``cli`` (the command line), ``run`` (one run of a TOML file), ``sweep`` (a grid of runs)
+and ``studies`` (the demo, the thermostat check, Poiseuille flow, viscosity, MIPS, BCD rods). The
+groups import downwards, cli -> sweep -> run <- studies; the runner finds the studies of its kinds
+of run in ``run.registry``, which importing ``studies`` fills. It uses both engines; neither engine
+imports it.
 """
 
-from .config import RunConfig, load_config, resolve_source
-from .demo import run_demo
-from .runner import execute, plan
+from . import studies  # noqa: F401 (fills the registry of studies before any run)
+from .run.config import RunConfig, load_config, resolve_source
+from .run.runner import execute, plan
+from .studies.demo import run_demo
+from .studies.thermostat_check import thermostat_check
 
-__all__ = ["RunConfig", "execute", "load_config", "plan", "resolve_source", "run_demo"]
+__all__ = ["RunConfig", "execute", "load_config", "plan", "resolve_source", "run_demo", "thermostat_check"]

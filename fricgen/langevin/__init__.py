@@ -11,28 +11,26 @@ Public API::
 
 Modules: ``config`` (what to simulate), ``system`` (particles, states, initial configurations,
 walls), ``simulation`` (the run loop), ``integrator``, ``pairs``, ``neighbors`` and ``records``
-(the compiled step), ``analysis`` (T_eff, histograms, KL), ``trajectory`` (GSD, checkpoints),
-``thermostat_check`` (the statistical test of a law). Imports only the kernel layer, the RNG,
-fricgen.schema/errors and derive.calculus: never SymPy, the rods engine or the command line.
+(the compiled step), ``analysis`` (T_eff, histograms, KL), ``trajectory`` (GSD, checkpoints); the
+statistical test of a law's thermostat is a study, fricgen.app.thermostat_check. Imports only the
+kernel layer, the RNG, fricgen.schema/errors and fricgen.derive.calculus: never SymPy, the rods
+engine or the application.
 """
 
 from .analysis import Estimate, Sampler, block_estimate, kl_divergence, maxwell_boltzmann, scaled_components, temperatures, velocity_profile
 from .config import Active, Bulk, LangevinConfig, Law, Thermostat
 from .simulation import Simulation
 from .system import Particles, State, add_slab_walls, lattice_state, packing_box, thermal_state
-from .thermostat_check import CheckResult, PassiveCheck, passive_check, passive_run, thermostat_check
 from .trajectory import GSDWriter, load_checkpoint, save_checkpoint
 
 __all__ = [
     "Active",
     "Bulk",
-    "CheckResult",
     "Estimate",
     "GSDWriter",
     "LangevinConfig",
     "Law",
     "Particles",
-    "PassiveCheck",
     "Sampler",
     "Simulation",
     "State",
@@ -44,12 +42,9 @@ __all__ = [
     "load_checkpoint",
     "maxwell_boltzmann",
     "packing_box",
-    "passive_check",
-    "passive_run",
     "save_checkpoint",
     "scaled_components",
     "temperatures",
     "thermal_state",
-    "thermostat_check",
     "velocity_profile",
 ]

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from fricgen.app.cli import main
-from fricgen.app.mips import Frame, detect, detect_trajectory, local_area_fraction, run_mips
+from fricgen.app.studies.mips import Frame, detect, detect_trajectory, local_area_fraction, run_mips
 
 R = 0.5
 DISC = np.pi * R**2

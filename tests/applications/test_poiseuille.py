@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from fricgen.app.cli import main
-from fricgen.app.poiseuille import fit_slit_profile, frame_errors, inside, slit_geometry, stokes_profile
+from fricgen.app.studies.poiseuille import fit_slit_profile, frame_errors, inside, slit_geometry, stokes_profile
 from fricgen.errors import ConfigError
 
 #: The paper's slit: 36 bins across L_y = 2 x 8.5847 + 1, y_B = 7.5847, phi = 0.15, with a body force.

@@ -6,9 +6,9 @@ import dataclasses
 import numpy as np
 import pytest
 
-from fricgen.app.build import build
-from fricgen.app.config import RunLaw, load_config, resolve_source
-from fricgen.app.viscosity import CurrentSampler, autocorrelation, bulk_config, measure_bulk_viscosity, transverse_viscosity
+from fricgen.app.run.build import build
+from fricgen.app.run.config import RunLaw, load_config, resolve_source
+from fricgen.app.studies.viscosity import CurrentSampler, autocorrelation, bulk_config, measure_bulk_viscosity, transverse_viscosity
 from fricgen.errors import ConfigError
 from fricgen.langevin.config import Thermostat
 

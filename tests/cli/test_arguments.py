@@ -7,9 +7,9 @@ import math
 
 import pytest
 
-from fricgen.app.arguments import join_negative_values
 from fricgen.app.cli import main
-from fricgen.app.outputs import check_folder, dumps
+from fricgen.app.cli.arguments import join_negative_values
+from fricgen.app.run.outputs import check_folder, dumps
 from fricgen.errors import ConfigError
 
 
@@ -35,7 +35,7 @@ def test_output_folders_are_checked_without_writing(tmp_path):
 
 
 def test_thermostat_check_passes_kT_to_the_check(monkeypatch, capsys):
-    module = importlib.import_module("fricgen.langevin.thermostat_check")  # the package exports a function of that name
+    module = importlib.import_module("fricgen.app.studies.thermostat_check")  # fricgen.app exports a function of that name
     seen = []
 
     def fake_run(check):
@@ -50,7 +50,7 @@ def test_thermostat_check_passes_kT_to_the_check(monkeypatch, capsys):
 
 
 def test_demo_replaces_an_earlier_demo_but_not_another_commands_summary(tmp_path, monkeypatch):
-    from fricgen.app import demo
+    from fricgen.app.studies import demo
 
     monkeypatch.setattr(demo, "passive_run", lambda *args, **kwargs: pytest.fail("the check must come first"))
     (tmp_path / "summary.json").write_text(json.dumps({"runs": {"with_contact_noise": {}}}))

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from fricgen.app.cli import main
-from fricgen.app.config import example_names, load_config, resolve_source
+from fricgen.app.run.config import example_names, load_config, resolve_source
 
 #: Overrides that shrink an example to a run of seconds.
 SMALL = {

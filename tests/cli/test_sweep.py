@@ -14,8 +14,8 @@ import psutil
 import pytest
 
 from fricgen.app.cli import main
-from fricgen.app.config import parse_override
-from fricgen.app.sweep_config import load_sweep, setting, sweep_names
+from fricgen.app.run.config import parse_override
+from fricgen.app.sweep.config import load_sweep, setting, sweep_names
 
 #: Overrides that make a passive point a run of a second (N = 64); STEPS is added per test.
 SMALL = """
@@ -190,7 +190,7 @@ def _child_of(out, point):
     """The process that runs ``point`` of the sweep into ``out`` (the task's child), or None."""
     for process in psutil.process_iter(["cmdline"]):
         line = " ".join(process.info["cmdline"] or [])
-        if "fricgen.app.sweep_task" in line and str(out / point) in line:
+        if "fricgen.app.sweep.task" in line and str(out / point) in line:
             return process
     return None
 

@@ -35,18 +35,18 @@ def _trap(*args, **kwargs):
 def trap(monkeypatch):
     """Simulations (Langevin runs, the run command's execution, the rods' Monte Carlo start) and the
     symbolic layer's derivations raise Started."""
-    import fricgen.app.runner
+    import fricgen.app.run.runner
     import fricgen.langevin.simulation
     import fricgen.rods.simulation
 
     monkeypatch.setattr(fricgen.langevin.simulation.Simulation, "run", _trap)
     monkeypatch.setattr(fricgen.rods.simulation.RodSimulation, "__init__", _trap)
-    monkeypatch.setattr(fricgen.app.runner, "execute", _trap)
+    monkeypatch.setattr(fricgen.app.run.runner, "execute", _trap)
     fakes = {
-        "derive.emit": {"generate": _trap, "GENERATED": Path("generated")},
-        "derive.noise": {"derive_noise": _trap},
-        "derive.verification": {"verify": _trap},
-        "derive.laws": {"catalogue": _trap, "load_law": _trap},
+        "fricgen.derive.driver": {"generate": _trap, "GENERATED": Path("generated")},
+        "fricgen.derive.noise.derivation": {"derive_noise": _trap},
+        "fricgen.derive.noise.verification": {"verify": _trap},
+        "fricgen.derive.law.laws": {"catalogue": _trap, "load_law": _trap},
     }
     for name, attributes in fakes.items():
         monkeypatch.setitem(sys.modules, name, types.SimpleNamespace(**attributes))

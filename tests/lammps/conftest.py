@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from fricgen.app.lammps import LammpsError, build_plugin, emit_plugin, locate_lammps, plugin_folder, sources_hash
+from fricgen.app.cli.lammps import LammpsError, build_plugin, emit_plugin, locate_lammps, plugin_folder, sources_hash
 
 BUILD_ROOT = Path(tempfile.gettempdir()) / "fricgen-lammps-tests"
 

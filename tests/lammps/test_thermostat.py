@@ -77,7 +77,7 @@ def test_without_the_noise_the_friction_cools_to_the_engines_T_eff(lammps, plugi
     system: 900 discs, area fraction 0.6, dt = 1e-3): both cool well below kT, to the same T_eff."""
     found = temperatures(run(lammps, tmp_path, script(plugin("coulomb_newton"), "coulomb_newton", 2, False, 10000)))
     assert found["T_trans"][0] < 0.9 and found["T_rot"][0] < 0.8, found
-    command = [sys.executable, "-m", "fricgen.app.cli", "thermostat-check", "coulomb_newton", "--no-contact-noise", "--n", "900"]
+    command = [sys.executable, "-m", "fricgen", "thermostat-check", "coulomb_newton", "--no-contact-noise", "--n", "900"]
     done = subprocess.run([*command, "--time", "10", "--seed", "3", "--json"], capture_output=True, text=True)
     assert done.returncode in (0, 1), done.stderr  # 1: the check fails, as it must without the noise
     engine = json.loads(done.stdout)

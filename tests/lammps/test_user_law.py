@@ -4,9 +4,9 @@ builds it, and the plugin keeps kT under `mpirun -np 2`."""
 
 from __future__ import annotations
 
-from fricgen.app import laws
-from fricgen.app.arguments import Parser
-from fricgen.app.lammps import add_lammps_command
+from fricgen.app.cli import laws
+from fricgen.app.cli.arguments import Parser
+from fricgen.app.cli.lammps import add_lammps_command
 
 from .helpers import run
 from .test_thermostat import KT, script, temperatures

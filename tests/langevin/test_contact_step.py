@@ -15,8 +15,9 @@ import numba
 import numpy as np
 import pytest
 
+from fricgen.app import thermostat_check
 from fricgen.kernels import CONTACT_KERNEL, load_law_kernels
-from fricgen.langevin import Particles, Simulation, lattice_state, thermostat_check
+from fricgen.langevin import Particles, Simulation, lattice_state
 from fricgen.langevin.contact_step import colour_classes, update_pair
 from fricgen.langevin.records import Bodies, Dynamics, Motion
 from fricgen.rng import CONTACT, pair_key, stream_key, uniform, ziggurat_normal

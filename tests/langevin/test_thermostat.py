@@ -13,7 +13,7 @@ import functools
 
 import pytest
 
-from fricgen.langevin import thermostat_check
+from fricgen.app import thermostat_check
 
 #: The check on the explicit contact kick, where a wrong D shows.
 explicit_check = functools.partial(thermostat_check, contact_scheme="explicit")

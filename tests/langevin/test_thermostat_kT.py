@@ -10,7 +10,7 @@ KL divergences (F-41) below 2e-3, as in test_thermostat.py.
 
 import functools
 
-from fricgen.langevin import thermostat_check
+from fricgen.app import thermostat_check
 
 #: The check on the explicit contact kick, where a wrong D shows.
 explicit_check = functools.partial(thermostat_check, contact_scheme="explicit")

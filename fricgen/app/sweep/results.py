@@ -16,9 +16,9 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
-from ..errors import ConfigError
-from .runner import SUMMARY
-from .sweep_config import Plot, Point, flatten, label, toml_value
+from ...errors import ConfigError
+from ..run.outputs import SUMMARY
+from .config import Plot, Point, flatten, label, toml_value
 
 
 def coordinate(value):

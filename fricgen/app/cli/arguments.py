@@ -7,7 +7,7 @@ import argparse
 import contextlib
 import re
 
-from ..errors import ConfigError, FricgenError
+from ...errors import ConfigError, FricgenError
 
 
 class UsageError(FricgenError):

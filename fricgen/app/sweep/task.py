@@ -1,6 +1,6 @@
-"""One point of a sweep as a Dask task: ``fricgen run`` in a child process that owns the point's folder.
+"""One point of a sweep as a Dask task: a run in a child process that owns the point's folder.
 
-The task, :func:`run_point`, runs on a worker and starts ``python -m fricgen.app.sweep_task SPEC``
+The task, :func:`run_point`, runs on a worker and starts ``python -m fricgen.app.sweep.task SPEC``
 with ``NUMBA_NUM_THREADS=1`` (one core per point) in a session of its own (a Ctrl-C at the terminal
 reaches the sweep, which stops the workers, not each run twice), its output appended to the folder's
 ``run.log``. The child
@@ -12,7 +12,9 @@ reaches the sweep, which stops the workers, not each run twice), its output appe
   checkpoint at the end of the current chunk and exits, so no orphan keeps writing;
 - decides under the lock what the folder needs (:func:`folder_state`): nothing, a resume from the
   checkpoint (bit for bit, as ``fricgen run --resume``), or a fresh start (the files of a start that
-  died before its first checkpoint are deleted first).
+  died before its first checkpoint are deleted first);
+- runs the point as ``fricgen run`` does, by the runner's :func:`~fricgen.app.run.runner.plan` and
+  :func:`~fricgen.app.run.runner.execute`, with its exit status and its errors on one line.
 """
 
 from __future__ import annotations
@@ -32,7 +34,11 @@ from pathlib import Path
 
 import numpy as np
 
-from .runner import CHECKPOINT, RUN_FILES, SUMMARY
+from fricgen.derive.errors import DeriveError
+
+from ...errors import FricgenError
+from ..run.outputs import CHECKPOINT, SUMMARY, fail
+from ..run.runner import RUN_FILES, execute, plan
 
 LOG, LOCK = "run.log", ".lock"
 #: Seconds between the watchdog's looks at its parent.
@@ -65,7 +71,8 @@ def folder_state(folder: Path, steps: int) -> str:
 
 def run_point(spec: dict) -> dict:
     """The Dask task of a point: its child process to the end; ``spec`` has the point's ``name``,
-    ``folder``, ``steps`` and ``run`` (the arguments of ``fricgen run`` without --out/--resume)."""
+    ``folder``, ``steps``, and the ``base`` configuration, its ``settings`` (``SECTION.KEY=VALUE``) and
+    the user's law folders ``laws`` of its run."""
     folder = Path(spec["folder"])
     folder.mkdir(parents=True, exist_ok=True)
     clock = time.perf_counter()
@@ -112,9 +119,19 @@ def _begin_attempt(folder: Path, worker: int) -> None:
         log.write(f"# {time.strftime('%Y-%m-%d %H:%M:%S')} on {socket.gethostname()}, worker pid {worker}\n".encode())
 
 
-def _child(spec: dict) -> int:
-    from .cli import main
+def _run(spec: dict, out: str | None = None, resume: str | None = None) -> int:
+    """The point's run (``fricgen run BASE --set ... --laws ...`` with ``--out`` or ``--resume``) in this
+    process; its exit status, and an error (a configuration or checkpoint that does not fit) as the
+    command line reports it."""
+    try:
+        return execute(plan(spec["base"], spec["settings"], None, out, resume, spec["laws"]))
+    except (FricgenError, DeriveError) as error:
+        return fail("fricgen run", error, getattr(error, "exit_status", 2))
+    except KeyboardInterrupt:
+        return fail("fricgen run", "interrupted", 130)
 
+
+def _child(spec: dict) -> int:
     _watch(spec["parent"])
     folder = Path(spec["folder"])
     with _lock(folder):
@@ -124,10 +141,10 @@ def _child(spec: dict) -> int:
         if state == "done":
             return 0
         if state == "resume":
-            return main(["run", *spec["run"], "--resume", str(folder / CHECKPOINT)])
+            return _run(spec, resume=str(folder / CHECKPOINT))
         for name in (*RUN_FILES, f"{CHECKPOINT}.tmp"):
             (folder / name).unlink(missing_ok=True)
-        return main(["run", *spec["run"], "--out", str(folder)])
+        return _run(spec, out=str(folder))
 
 
 if __name__ == "__main__":

@@ -20,11 +20,11 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import curve_fit
 
-from ..errors import ConfigError
-from ..langevin.config import Bulk, Thermostat
-from ..langevin.simulation import Simulation
-from .build import build
-from .config import Run, RunConfig, RunLaw, System
+from ...errors import ConfigError
+from ...langevin.config import Bulk, Thermostat
+from ...langevin.simulation import Simulation
+from ..run.build import build
+from ..run.config import Run, RunConfig, RunLaw, System
 
 #: The (k axis a, current component b) pairs of transverse modes in 3-D and 2-D.
 TRANSVERSE = {3: ((0, 1), (0, 2), (1, 0), (1, 2), (2, 0), (2, 1)), 2: ((0, 1), (1, 0))}

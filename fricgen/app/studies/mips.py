@@ -16,7 +16,8 @@ with a Gaussian of width 0.03. Criterion (:func:`bimodality`): the run is phase 
 has two maxima at least ``SEPARATION`` = 0.2 apart (the highest one and the highest one that far
 from it) and the lowest p between them is at most ``DIP`` = 0.5 of the lower maximum, with at least
 ``MINORITY`` = 5 % of the grid on each side of that minimum. The maxima are the dilute and dense
-area fractions (the modes of the coexisting phases).
+area fractions (the modes of the coexisting phases). A ``fricgen run`` of active discs (the kind
+``active``, 2-D) gets the verdict as the ``mips`` entry of its summary (:func:`summarize_run`).
 """
 
 from __future__ import annotations
@@ -31,6 +32,10 @@ import numpy as np
 from matplotlib.collections import EllipseCollection
 from matplotlib.figure import Figure
 from scipy.ndimage import gaussian_filter1d
+
+from ...langevin.simulation import Simulation
+from ..run.config import RunConfig
+from ..run.outputs import TRAJECTORY
 
 KERNEL, SPACING = 1.5, 1.0  # sigma
 BIN, SMOOTHING, TOP = 0.01, 0.03, 1.2  # area fraction; values above TOP count in the last bin
@@ -188,6 +193,27 @@ def run_mips(folder: Path, trajectory: Path, final: Frame, step: int, first_step
     mips = detect(frames, steps)
     local_density_figure(mips, frames[-1], folder / "local_density.png", f"step {steps[-1]}")
     return mips.as_dict()
+
+
+def summarize_run(config: RunConfig, simulation: Simulation, folder: Path, summary: dict) -> dict | None:
+    """The ``mips`` entry of an active run's summary (:func:`run_mips` of its trajectory after
+    ``run.equilibrate`` and its final state); None in 3-D."""
+    state, particles = simulation.state, simulation.particles
+    if state.dim != 2:
+        return None
+    mobile = particles.mobile
+    final = Frame(state.position[mobile, :2], particles.radius[mobile], tuple(state.box[:2].tolist()))
+    return run_mips(folder, folder / TRAJECTORY, final, state.step, config.run.equilibrate)
+
+
+def describe_run(mips: dict) -> list[str]:
+    """The verdict's line in the report of ``fricgen run`` (none for a box too small to tell)."""
+    if mips.get("phase_separated") is None:
+        return []
+    phases = "no"
+    if mips["phase_separated"]:
+        phases = f"phase separated: dilute phi = {mips['phi_dilute']:.3f}, dense phi = {mips['phi_dense']:.3f}"
+    return [f"MIPS ({mips['frames']} frames): {phases}; local_density.png"]
 
 
 def local_density_figure(mips: Mips, frame: Frame, path: Path, title: str = "") -> Path:

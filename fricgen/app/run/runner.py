@@ -3,10 +3,12 @@ and resume from a checkpoint.
 
 The output folder holds ``config.json`` (the validated configuration), ``trajectory.gsd`` (a frame
 every ``trajectory_period`` steps from step 0), one CSV table per observable (every ``period``
-steps, see :mod:`fricgen.app.observables`), ``checkpoint.npz`` (every ``checkpoint_period`` steps, at
-the end and on Ctrl-C) and, when the run completes, ``summary.json``: averages over the steps after
-``run.equilibrate`` with block standard errors. Everything is validated before the folder is
-touched. Exit status: 0 done, 1 the simulation blew up, 2 a bad configuration, 130 stopped by Ctrl-C.
+steps, see :mod:`fricgen.app.run.observables`), ``checkpoint.npz`` (every ``checkpoint_period`` steps,
+at the end and on Ctrl-C) and, when the run completes, ``summary.json``: averages over the steps after
+``run.equilibrate`` with block standard errors, and the entry of the study of each kind of the run
+(:mod:`fricgen.app.run.registry`: the Stokes fit of a slit flow, MIPS of active discs). Everything is
+validated before the folder is touched. Exit status: 0 done, 1 the simulation blew up, 2 a bad
+configuration, 130 stopped by Ctrl-C.
 """
 
 from __future__ import annotations
@@ -21,22 +23,18 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import ConfigError, SimulationError
-from ..kernels import user_laws
-from ..langevin.simulation import Simulation
-from ..langevin.trajectory import GSDWriter, load_checkpoint, save_checkpoint, truncate_trajectory
-from ..schema import differences
-from .build import build
+from ...errors import ConfigError, SimulationError
+from ...kernels import user_laws
+from ...langevin.simulation import Simulation
+from ...langevin.trajectory import GSDWriter, load_checkpoint, save_checkpoint, truncate_trajectory
+from ...schema import differences
+from .build import build, check
 from .config import OBSERVABLES, RunConfig, load_config, parse_override, resolve_source
-from .mips import Frame, run_mips
 from .observables import Periodic, observable_table, read_table, series_summary, truncate_table
-from .outputs import check_folder, dumps
-from .plots import profiles_figure
-from .poiseuille import fit_slit_run, frame_errors
+from .outputs import CHECKPOINT, CONFIG, SUMMARY, TRAJECTORY, check_folder, dumps
 from .progress import ProgressBar, RunInterrupted, StopOnInterrupt
+from .registry import STUDIES, Study
 
-CHECKPOINT, TRAJECTORY, SUMMARY, CONFIG = "checkpoint.npz", "trajectory.gsd", "summary.json", "config.json"
-PROFILES = "profiles.png"  # the velocity and spin profiles of a slit run, with the Stokes fit
 RUN_FILES = (CHECKPOINT, TRAJECTORY, SUMMARY, CONFIG, *(f"{name}.csv" for name in OBSERVABLES))
 
 
@@ -62,6 +60,16 @@ def plan(source: str, settings: list[str], steps: int | None, out: str | None, r
     command += [arg for folder in laws for arg in ("--laws", folder)]
     with user_laws(*laws, *config.law.folders):  # the kernels are loaded here, by build and load_checkpoint
         return _plan(config, command, out, resume, path.stem)
+
+
+def check_run(source: str, settings: list[str], laws: Sequence[str] = ()) -> RunConfig:
+    """The configuration of a run, checked as :func:`plan` checks a fresh one up to placing the
+    particles (the file, the overrides, the law, the box), without building the simulation: a
+    sweep's check of its points. ConfigError naming the key and the fix."""
+    config = load_config(resolve_source(source), [parse_override(text) for text in settings])
+    with user_laws(*laws, *config.law.folders):
+        check(config)
+    return config
 
 
 def _plan(config: RunConfig, command: list[str], out: str | None, resume: str | None, name: str) -> Plan:
@@ -119,6 +127,7 @@ def execute(plan: Plan, as_json: bool = False) -> int:
     """Run a plan to the end or to Ctrl-C; returns the exit status."""
     config, simulation, folder = plan.config, plan.simulation, plan.folder
     o, start, clock = config.output, simulation.state.step, time.perf_counter()
+    studies = [STUDIES[kind] for kind in config.kinds]  # a kind without its study fails here, before the run
     folder.mkdir(parents=True, exist_ok=True)
     if plan.resumed:
         _continue_from(folder, start)
@@ -155,9 +164,9 @@ def execute(plan: Plan, as_json: bool = False) -> int:
             file=sys.stderr,
         )
         return 130
-    summary = summarize(config, simulation, folder, time.perf_counter() - clock)
+    summary = summarize(config, simulation, folder, time.perf_counter() - clock, studies)
     (folder / SUMMARY).write_text(dumps(summary))
-    print(dumps(summary) if as_json else _describe(summary, folder))
+    print(dumps(summary) if as_json else _describe(summary, folder, studies))
     return 0
 
 
@@ -172,8 +181,9 @@ def _continue_from(folder: Path, step: int) -> None:
             truncate_table(folder / f"{name}.csv", step)
 
 
-def summarize(config: RunConfig, simulation: Simulation, folder: Path, seconds: float) -> dict:
-    """Averages of the observables over the steps after ``run.equilibrate``, with block errors."""
+def summarize(config: RunConfig, simulation: Simulation, folder: Path, seconds: float, studies: Sequence[Study] = ()) -> dict:
+    """Averages of the observables over the steps after ``run.equilibrate``, with block errors, and
+    the entry of each study of the run's kinds."""
     state, particles = simulation.state, simulation.particles
     summary = {
         "steps": state.step,
@@ -197,44 +207,20 @@ def summarize(config: RunConfig, simulation: Simulation, folder: Path, seconds: 
                 profile[label] = [s["mean"] for s in slabs]
                 profile[f"{label}_err"] = [s["error"] for s in slabs]
             summary["velocity_profile"] = profile
-            if config.walls is not None and config.bulk.vector[0]:  # a slit flow: the Stokes fit (F-43) and profiles.png
-                frames = rows[:, [header.index(f"vx_{j}") for j in range(bins)]]
-                summary["poiseuille"] = _poiseuille(config, summary["n"], profile, width, frames, folder / PROFILES)
-    if config.active.force != 0 and state.dim == 2:  # active discs: MIPS from the frames after equilibrate
-        mobile = particles.mobile
-        final = Frame(state.position[mobile, :2], particles.radius[mobile], tuple(state.box[:2].tolist()))
-        summary["mips"] = run_mips(folder, folder / TRAJECTORY, final, state.step, config.run.equilibrate)
+    for study in studies:
+        entry = study.summarize(config, simulation, folder, summary)
+        if entry is not None:
+            summary[study.key] = entry
     return summary
 
 
-def _poiseuille(config: RunConfig, n: int, profile: dict, width: float, frames: np.ndarray, figure: Path) -> dict:
-    """The slit fit of the profile as a dict ({"error": why} when it cannot be fitted), with the errors
-    from the per-frame fits (``frames``: v_x per bin and row), and its figure."""
-    try:
-        fit = fit_slit_run(config, n, profile, width)
-    except ConfigError as error:
-        fit, result = None, {"error": str(error)}
-    else:
-        errors = frame_errors(fit, profile["y"], [np.nan if e is None else e for e in profile["v_x_err"]], frames)
-        result = fit.as_dict() | dict(zip(("eta_err_frames", "slip_err_frames"), errors))
-    profiles_figure(profile, fit, figure)
-    return result
-
-
-def _describe(summary: dict, folder: Path) -> str:
+def _describe(summary: dict, folder: Path, studies: Sequence[Study] = ()) -> str:
     lines = [f"fricgen run: {summary['steps']} steps (t = {summary['time']:g}) of {summary['n']} particles in {summary['seconds']:.1f} s"]
     for key in ("T_trans", "T_rot"):
         if key in summary and summary[key]["mean"] is not None:
             error = summary[key]["error"]
             lines.append(f"  {key} = {summary[key]['mean']:.4f}" + (f" +- {error:.4f}" if error is not None else ""))
-    if summary.get("mips", {}).get("phase_separated") is not None:
-        m = summary["mips"]
-        phases = f"phase separated: dilute phi = {m['phi_dilute']:.3f}, dense phi = {m['phi_dense']:.3f}" if m["phase_separated"] else "no"
-        lines.append(f"  MIPS ({m['frames']} frames): {phases}; local_density.png")
-    fit = summary.get("poiseuille", {})
-    if "eta" in fit:
-        eta, slip = (f"{fit[key]:.4g} +- {fit[f'{key}_err']:.2g} (frames: {fit[f'{key}_err_frames']:.2g})" for key in ("eta", "slip"))
-        lines.append(f"  Stokes fit (F-43): eta = {eta}, b = {slip}, chi2/dof = {fit['reduced_chi2']:.2f}; {PROFILES}")
+    lines += [f"  {line}" for study in studies if study.key in summary for line in study.describe(summary[study.key])]
     files = sorted(p.name for p in folder.iterdir() if p.name in RUN_FILES)
     lines.append(f"  outputs in {folder}: {', '.join(files)}")
     return "\n".join(lines)

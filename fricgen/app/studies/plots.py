@@ -1,5 +1,4 @@
-"""Figures of the demo: velocity and spin histograms against Maxwell–Boltzmann, and T_eff; the
-velocity and spin profiles of a slit run with their Stokes fit.
+"""Figures of the demo: velocity and spin histograms against Maxwell–Boltzmann, and T_eff.
 
 Samples are the scaled components sqrt(m) v_a and sqrt(I) omega_z, so every histogram is compared
 with one density, sqrt(1 / 2 pi kT) exp(-x^2 / 2 kT), at the bath's kT and at the fitted T_eff.
@@ -13,9 +12,8 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
-from ..langevin.analysis import Sampler, maxwell_boltzmann
-from ..langevin.thermostat_check import CheckResult
-from .poiseuille import SlitFit
+from ...langevin.analysis import Sampler, maxwell_boltzmann
+from .thermostat_check import CheckResult
 
 COLOURS = ("tab:blue", "tab:red")
 
@@ -76,35 +74,5 @@ def temperature_figure(runs: list[tuple[CheckResult, Sampler]], path: Path, kT: 
         for r, _ in runs
     ]
     table.table(cellText=rows, colLabels=["run", "T_trans", "T_rot", "KL trans / rot"], loc="center").scale(1, 1.4)
-    figure.savefig(path, dpi=120)
-    return path
-
-
-def profiles_figure(profile: dict, fit: SlitFit | None, path: Path) -> Path:
-    """A slit's v_x(y) with block errors and the fitted partial-slip Stokes profile (F-43) (left), and
-    omega_z(y) with half the vorticity of the fit, -v_x'(y) / 2 = n F y / (2 eta) (right); grey: bins
-    left out of the fit, dotted: the boundaries +-y_B."""
-    figure = Figure(figsize=(10, 4), layout="constrained")
-    axes = figure.subplots(1, 2)
-    y = np.asarray(profile["y"])
-    used = np.zeros(y.size, bool)
-    if fit is not None:
-        used[fit.used] = True
-    for axis, key, label in zip(axes, ("v_x", "omega_z"), (r"$v_x$ ($\sigma/t_0$)", r"$\omega_z$ ($1/t_0$)")):
-        mean, error = (np.array([np.nan if x is None else x for x in profile[k]], dtype=float) for k in (key, f"{key}_err"))
-        for chosen, colour in ((used, "tab:blue"), (~used, "0.6")):
-            axis.errorbar(y[chosen], mean[chosen], error[chosen], fmt="o", ms=3, color=colour, capsize=2)
-        axis.set_xlabel(r"$y$ ($\sigma$)")
-        axis.set_ylabel(label)
-    if fit is not None:
-        inner = np.linspace(-fit.boundary, fit.boundary, 200)
-        axes[0].plot(inner, fit.profile(inner), color="black", label=f"F-43: $\\eta = {fit.eta:.3g} \\pm {fit.eta_err:.2g}$, "
-                     f"$b = {fit.slip:.3g} \\pm {fit.slip_err:.2g}$, $\\chi^2/dof = {fit.reduced_chi2:.2f}$")  # fmt: skip
-        axes[1].plot(inner, fit.density * fit.force * inner / (2 * fit.eta), "--", color="black", label=r"$-v_x'(y)/2$ of the fit")
-        for axis in axes:
-            for side in (-1, 1):
-                axis.axvline(side * fit.boundary, color="black", ls=":", lw=1)
-            axis.legend(fontsize=8, loc="lower center", frameon=False)
-    figure.suptitle("Poiseuille flow in the slit: velocity and spin profiles (block errors)")
     figure.savefig(path, dpi=120)
     return path

@@ -1,4 +1,4 @@
-"""Run configurations from TOML, checked in full (keys, types, values; :mod:`fricgen.app.build` adds
+"""Run configurations from TOML, checked in full (keys, types, values; :mod:`fricgen.app.run.build` adds
 the law's kernels and the initial state) before anything is written. One section per dataclass, a
 key per field; missing keys take the defaults. ``[law]``, ``[thermostat]``, ``[active]`` and
 ``[bulk]`` are the Langevin engine's own sections (fricgen.langevin.config; ``law.folder`` is added
@@ -14,16 +14,18 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..errors import ConfigError
-from ..langevin.config import Active, Bulk, LangevinConfig, Law, Thermostat
-from ..langevin.system import CLOSE_PACKING, RANDOM_LIMIT, ball_volume, cubic_side, memory_estimate
-from ..schema import Section, structure
+from ...errors import ConfigError
+from ...langevin.config import Active, Bulk, LangevinConfig, Law, Thermostat
+from ...langevin.system import CLOSE_PACKING, RANDOM_LIMIT, ball_volume, cubic_side, memory_estimate
+from ...schema import Section, structure
 
 EXAMPLES = Path(__file__).with_name("examples")
 
 
-#: The observables a run can tabulate (fricgen.app.observables writes them).
+#: The observables a run can tabulate (fricgen.app.run.observables writes them).
 OBSERVABLES = ("temperatures", "velocity_profile")
+#: The kinds of run that a study analyses (:attr:`RunConfig.kinds`; fricgen.app.run.registry).
+KINDS = ("slit_flow", "active")
 
 
 @dataclass(frozen=True)
@@ -129,7 +131,7 @@ class Run(Section):
 
 @dataclass(frozen=True)
 class Output(Section):
-    """``[output]``: ``observables`` (see :mod:`fricgen.app.observables`) every ``period`` steps, GSD
+    """``[output]``: ``observables`` (see :mod:`fricgen.app.run.observables`) every ``period`` steps, GSD
     frames every ``trajectory_period`` (0: none), checkpoints every ``checkpoint_period`` (0: only at
     the end or on Ctrl-C), ``profile_bins`` slabs of the velocity profile; periods are multiples of
     ``run.chunk``."""
@@ -199,6 +201,14 @@ class RunConfig(Section):
         needed = memory_estimate(n + walls, box, s.radius, self.langevin().skin)  # also checks the engine's scalars
         what = f"{n} particles" + (f" and {walls} wall spheres" if walls else "") + (f" in a box of {list(box)}" if s.box else "")
         self.require_memory("system.n" if s.box is None else "system.box", needed, what)
+
+    @property
+    def kinds(self) -> tuple[str, ...]:
+        """What this run is beyond a fluid in a box, in the order of :data:`KINDS`: ``slit_flow``
+        (walls and a bulk force along x: Poiseuille flow, F-42) and ``active`` (an active force);
+        none for a passive run."""
+        found = {"slit_flow": self.walls is not None and self.bulk.vector[0] != 0, "active": self.active.force != 0}
+        return tuple(kind for kind in KINDS if found[kind])
 
     def langevin(self) -> LangevinConfig:
         """The engine's configuration: its own sections, the WCA strength and the seed."""

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..rods import (
+from ...rods import (
     Neighbours,
     RodConfig,
     RodProfile,
@@ -25,8 +25,8 @@ from ..rods import (
     field_energy,
     rod_profile,
 )
-from ..schema import Section
-from .outputs import check_folder
+from ...schema import Section
+from ..run.outputs import check_folder
 
 REFINEMENT = 4  # --extrapolate: a second run at dt / 4
 

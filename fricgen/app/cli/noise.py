@@ -10,9 +10,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from ..errors import ConfigError
-from ..kernels import load_law_kernels
-from ..schema import Section
+from ...errors import ConfigError
+from ...kernels import load_law_kernels
+from ...schema import Section
 
 
 @dataclass(frozen=True)

@@ -6,7 +6,7 @@ relative to the sweep file), ``[set]`` (overrides of every point, as ``fricgen r
 an optional ``[plot]``. An axis is a configuration key and its list of values, or a named axis (a
 name that is no section of a configuration) whose values are named sets of overrides. Each point
 becomes the ``--set`` arguments of one ``fricgen run``; what these mean is checked by the runner's
-own validation (:mod:`fricgen.app.sweep`), not here.
+own validation (:mod:`fricgen.app.sweep.runner`), not here.
 """
 
 from __future__ import annotations
@@ -19,9 +19,9 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..errors import ConfigError
-from ..schema import Section, structure, unknown_key
-from .config import EXAMPLES, RunConfig, example_names, read_toml
+from ...errors import ConfigError
+from ...schema import Section, structure, unknown_key
+from ..run.config import EXAMPLES, RunConfig, example_names, read_toml
 
 KEYS = ("base", "set", "grid", "plot")
 SECTIONS = tuple(f.name for f in dataclasses.fields(RunConfig))
@@ -265,5 +265,5 @@ def toml_value(value) -> str:
 
 
 def setting(key: str, value) -> str:
-    """The ``--set`` argument for ``key = value`` (:func:`~fricgen.app.config.parse_override` reads it back)."""
+    """The ``--set`` argument for ``key = value`` (:func:`~fricgen.app.run.config.parse_override` reads it back)."""
     return f"{key}={toml_value(value)}"

@@ -13,18 +13,26 @@ inside |y| <= y_B and holds particles; each bin's weight is its block error (cur
 absolute_sigma), so the errors of eta and b are one standard deviation and chi^2 / dof tests the
 model, if the bins fluctuate independently; :func:`frame_errors` gives the errors when they do not
 (the slow flow modes move all bins together). Units: sigma = 1, kT = 1, m = 1, t0; eta in
-kT t0 / sigma^3, b in sigma. See docs/poiseuille.md.
+kT t0 / sigma^3, b in sigma. See docs/poiseuille.md. A ``fricgen run`` of the kind ``slit_flow``
+gets the fit as the ``poiseuille`` entry of its summary and its figure ``profiles.png``
+(:func:`summarize_run`).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
+from matplotlib.figure import Figure
 from scipy.optimize import curve_fit
 
-from ..errors import ConfigError
-from .config import RunConfig
+from ...errors import ConfigError
+from ...langevin.simulation import Simulation
+from ..run.config import RunConfig
+from ..run.observables import read_table
+
+PROFILES = "profiles.png"  # the velocity and spin profiles of a slit run, with the Stokes fit
 
 
 def stokes_profile(y: np.ndarray, eta: float, slip: float, density: float, force: float, boundary: float) -> np.ndarray:
@@ -131,3 +139,64 @@ def fit_slit_run(config: RunConfig, n: int, profile: dict, width: float) -> Slit
     boundary, volume = slit_geometry(config.walls.half_width, s.radius, s.box, s.dimension)
     v, v_err = ([np.nan if x is None else x for x in profile[key]] for key in ("v_x", "v_x_err"))
     return fit_slit_profile(profile["y"], v, v_err, width, n / volume, config.bulk.vector[0], boundary)
+
+
+def summarize_run(config: RunConfig, simulation: Simulation, folder: Path, summary: dict) -> dict | None:
+    """The ``poiseuille`` entry of a slit run's summary: the fit of its velocity profile (``{"error":
+    why}`` when it cannot be fitted) with the errors of the per-frame fits (the velocity_profile table's
+    rows after ``run.equilibrate``), and the figure ``profiles.png``; None without that observable."""
+    profile = summary.get("velocity_profile")
+    if profile is None:
+        return None
+    header, rows = read_table(folder / "velocity_profile.csv")
+    rows = rows[rows[:, 0] > config.run.equilibrate]
+    bins = config.output.profile_bins
+    width = simulation.state.box[1] / bins
+    frames = rows[:, [header.index(f"vx_{j}") for j in range(bins)]]
+    try:
+        fit = fit_slit_run(config, summary["n"], profile, width)
+    except ConfigError as error:
+        fit, result = None, {"error": str(error)}
+    else:
+        errors = frame_errors(fit, profile["y"], [np.nan if e is None else e for e in profile["v_x_err"]], frames)
+        result = fit.as_dict() | dict(zip(("eta_err_frames", "slip_err_frames"), errors))
+    profiles_figure(profile, fit, folder / PROFILES)
+    return result
+
+
+def describe_run(fit: dict) -> list[str]:
+    """The fit's line in the report of ``fricgen run``."""
+    if "eta" not in fit:
+        return []
+    eta, slip = (f"{fit[key]:.4g} +- {fit[f'{key}_err']:.2g} (frames: {fit[f'{key}_err_frames']:.2g})" for key in ("eta", "slip"))
+    return [f"Stokes fit (F-43): eta = {eta}, b = {slip}, chi2/dof = {fit['reduced_chi2']:.2f}; {PROFILES}"]
+
+
+def profiles_figure(profile: dict, fit: SlitFit | None, path: Path) -> Path:
+    """A slit's v_x(y) with block errors and the fitted partial-slip Stokes profile (F-43) (left), and
+    omega_z(y) with half the vorticity of the fit, -v_x'(y) / 2 = n F y / (2 eta) (right); grey: bins
+    left out of the fit, dotted: the boundaries +-y_B."""
+    figure = Figure(figsize=(10, 4), layout="constrained")
+    axes = figure.subplots(1, 2)
+    y = np.asarray(profile["y"])
+    used = np.zeros(y.size, bool)
+    if fit is not None:
+        used[fit.used] = True
+    for axis, key, label in zip(axes, ("v_x", "omega_z"), (r"$v_x$ ($\sigma/t_0$)", r"$\omega_z$ ($1/t_0$)")):
+        mean, error = (np.array([np.nan if x is None else x for x in profile[k]], dtype=float) for k in (key, f"{key}_err"))
+        for chosen, colour in ((used, "tab:blue"), (~used, "0.6")):
+            axis.errorbar(y[chosen], mean[chosen], error[chosen], fmt="o", ms=3, color=colour, capsize=2)
+        axis.set_xlabel(r"$y$ ($\sigma$)")
+        axis.set_ylabel(label)
+    if fit is not None:
+        inner = np.linspace(-fit.boundary, fit.boundary, 200)
+        axes[0].plot(inner, fit.profile(inner), color="black", label=f"F-43: $\\eta = {fit.eta:.3g} \\pm {fit.eta_err:.2g}$, "
+                     f"$b = {fit.slip:.3g} \\pm {fit.slip_err:.2g}$, $\\chi^2/dof = {fit.reduced_chi2:.2f}$")  # fmt: skip
+        axes[1].plot(inner, fit.density * fit.force * inner / (2 * fit.eta), "--", color="black", label=r"$-v_x'(y)/2$ of the fit")
+        for axis in axes:
+            for side in (-1, 1):
+                axis.axvline(side * fit.boundary, color="black", ls=":", lw=1)
+            axis.legend(fontsize=8, loc="lower center", frameon=False)
+    figure.suptitle("Poiseuille flow in the slit: velocity and spin profiles (block errors)")
+    figure.savefig(path, dpi=120)
+    return path

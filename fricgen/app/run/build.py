@@ -1,17 +1,19 @@
 """From a validated run configuration to a simulation at step 0: the law and its kernels, the
 particles, the initial state (lattice or random, in the box or in the slab between walls), walls.
 
-Each failure is a :class:`~fricgen.errors.ConfigError` naming the key, raised before any file is written.
+Each failure is a :class:`~fricgen.errors.ConfigError` naming the key, raised before any file is
+written. :func:`check` makes the checks of :func:`build` that need no particles (a sweep checks its
+points with it).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..errors import ConfigError, KernelError
-from ..kernels import load_law_kernels
-from ..langevin.simulation import Simulation
-from ..langevin.system import (
+from ...errors import ConfigError, KernelError
+from ...kernels import load_law_kernels
+from ...langevin.simulation import Simulation
+from ...langevin.system import (
     Particles,
     add_slab_walls,
     ball_volume,
@@ -36,15 +38,22 @@ def check_law(c: RunConfig) -> None:
     kernels.parameters(**c.law.parameters)
 
 
-def build(c: RunConfig) -> Simulation:
-    """The simulation of a validated configuration, from its initial state (step 0)."""
+def check(c: RunConfig) -> None:
+    """What :func:`build` checks before it places the particles: the law (:func:`check_law`) and the box."""
     check_law(c)
-    config, s, dim = c.langevin(), c.system, c.system.dimension
+    layout(c)
+
+
+def layout(c: RunConfig) -> tuple[np.ndarray, np.ndarray, int]:
+    """The box (3 lengths, the unused ones 0), the region the particles start in (the box, or the
+    slab between walls: 2 (half_width - 2 radius) high) and the number of particles; ConfigError if
+    the box is not wider than twice the interaction range or ``n`` exceeds close packing."""
+    s, dim = c.system, c.system.dimension
     if s.box is None:
         box = packing_box(Particles.spheres(s.n, s.radius, s.mass), dim, s.packing_fraction)
     else:
         box = np.array([*s.box, 0.0][:3], dtype=float)
-    reach = 2 * interaction_reach(s.radius, config.skin)
+    reach = 2 * interaction_reach(s.radius, c.langevin().skin)
     if not box[:dim].min() > reach:
         raise ConfigError(
             "system.box" if s.box is not None else "system.n",
@@ -59,6 +68,14 @@ def build(c: RunConfig) -> Simulation:
     n = s.n if s.n is not None else max(2, round(s.packing_fraction * volume / per_particle))
     if s.packing_fraction is None:
         check_fraction("system.n", n * per_particle / volume, s)
+    return box, region, n
+
+
+def build(c: RunConfig) -> Simulation:
+    """The simulation of a validated configuration, from its initial state (step 0)."""
+    check_law(c)
+    config, s, dim = c.langevin(), c.system, c.system.dimension
+    box, region, n = layout(c)
     particles = Particles.spheres(n, s.radius, s.mass)
     place = region.copy()
     if c.walls is not None:

@@ -20,11 +20,11 @@ import time
 from contextlib import closing
 from pathlib import Path
 
-from ..errors import ConfigError
-from ..langevin.thermostat_check import passive_check, passive_run
-from .outputs import check_folder, dumps
+from ...errors import ConfigError
+from ..run.outputs import check_folder, dumps
+from ..run.progress import ProgressBar
 from .plots import histogram_figure, temperature_figure
-from .progress import ProgressBar
+from .thermostat_check import passive_check, passive_run
 
 #: The demo's system and run (the thermostat check's solvent and WCA are the paper's).
 DEMO = {"law": "coulomb_newton", "calculus": "ito", "dim": 2, "n": 512, "phi": 0.6, "dt": 1e-3, "total_time": 10.0, "seed": 1}

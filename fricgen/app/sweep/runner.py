@@ -1,15 +1,17 @@
 """``fricgen sweep``: the points of a sweep file as Dask tasks, each a ``fricgen run`` in its own folder.
 
 Everything is checked before the output folder is touched: the sweep file
-(:mod:`fricgen.app.sweep_config`), every point's configuration by the runner's own :func:`plan`
-(as a fresh run, and as the resume its folder needs), and that a finished point's folder holds a
-run of the same configuration. The points that are not finished run on a ``distributed.LocalCluster``
+(:mod:`fricgen.app.sweep.config`), every point's configuration by the runner's
+:func:`~fricgen.app.run.runner.check_run` (the file, the overrides, the law and the box, as a fresh
+run is checked; no simulation is built), and that a finished point's folder holds a run of the same
+configuration. A checkpoint that its configuration cannot resume is refused by the point's own run
+(its run.log says why). The points that are not finished run on a ``distributed.LocalCluster``
 (one single-threaded worker process per CPU this process may use, or ``--workers``) or on the
-workers of a running scheduler (``--scheduler``); :mod:`fricgen.app.sweep_task` says what a point
+workers of a running scheduler (``--scheduler``); :mod:`fricgen.app.sweep.task` says what a point
 does in its worker. A point with its summary.json is never run again, so the same command after a
 Ctrl-C or a lost worker completes only what is missing. Outputs: ``OUT/<point>/`` (the run and its
 ``run.log``), ``OUT/sweep.json`` (the points and their overrides), ``OUT/results.csv`` and
-``OUT/phase_diagram.png`` (:mod:`fricgen.app.sweep_results`). Exit status: 0 every point done, 1 a
+``OUT/phase_diagram.png`` (:mod:`fricgen.app.sweep.results`). Exit status: 0 every point done, 1 a
 point failed (blew up), 2 a bad sweep file, 130 interrupted.
 """
 
@@ -20,7 +22,6 @@ import json
 import logging
 import os
 import sys
-import tempfile
 import time
 import uuid
 from dataclasses import dataclass
@@ -28,12 +29,12 @@ from pathlib import Path
 
 from tqdm import tqdm
 
-from ..errors import ConfigError
-from .outputs import check_folder, dumps
-from .runner import CHECKPOINT, CONFIG, plan
-from .sweep_config import Point, Sweep, flatten, load_sweep
-from .sweep_results import phase_diagram, result_row, write_table
-from .sweep_task import finished, folder_state, run_point
+from ...errors import ConfigError
+from ..run.outputs import CONFIG, check_folder, dumps
+from ..run.runner import check_run
+from .config import Point, Sweep, flatten, load_sweep
+from .results import phase_diagram, result_row, write_table
+from .task import finished, folder_state, run_point
 
 #: Seconds to reach a scheduler given by --scheduler.
 CONNECT_TIMEOUT = 20
@@ -60,8 +61,7 @@ def run_sweep(request: SweepRequest, as_json: bool = False) -> int:
     check_folder(out, "--out")
     workers = _workers(request)
     points = sweep.points()
-    with tempfile.TemporaryDirectory() as scratch:
-        specs = {point.name: _check_point(sweep, point, out / point.name, Path(scratch), request.laws) for point in points}
+    specs = {point.name: _check_point(sweep, point, out / point.name, request.laws) for point in points}
     todo = [spec for spec in specs.values() if spec is not None]
     try:
         with _client(request.scheduler, min(workers, len(todo))) if todo else contextlib.nullcontext() as client:
@@ -97,25 +97,25 @@ def _workers(request: SweepRequest) -> int:
     return request.workers
 
 
-def _check_point(sweep: Sweep, point: Point, folder: Path, scratch: Path, laws: tuple[str, ...]) -> dict | None:
-    """The task's spec of a point, None if it is finished; ConfigError (named by the point) if its
-    configuration, its checkpoint or its finished run does not fit. A fresh run is planned into an
-    empty scratch folder: the point's own may hold files of a start that died before its first
-    checkpoint, which the task deletes."""
+def _check_point(sweep: Sweep, point: Point, folder: Path, laws: tuple[str, ...]) -> dict | None:
+    """The task's spec of a point (:func:`~fricgen.app.sweep.task.run_point`), None if it is
+    finished; ConfigError (named by the point) if its configuration or its finished run does not fit."""
     try:
         check_folder(folder, "--out")
-        config = plan(sweep.base, list(point.settings), None, str(scratch / point.name), None, laws).config
-        state = folder_state(folder, config.run.steps)
-        if state == "resume":
-            plan(sweep.base, list(point.settings), None, None, str(folder / CHECKPOINT), laws)
-        if state == "done":
+        config = check_run(sweep.base, list(point.settings), laws)
+        if folder_state(folder, config.run.steps) == "done":
             _check_finished(folder, config.as_dict())
             return None
     except ConfigError as error:
         raise ConfigError(f"point {point.name}: {error.key}", error.problem, error.fix) from error
-    run = [sweep.base, *(arg for text in point.settings for arg in ("--set", text))]
-    run += [arg for path in laws for arg in ("--laws", str(Path(path).absolute()))]
-    return {"name": point.name, "folder": str(folder), "steps": config.run.steps, "run": run}
+    return {
+        "name": point.name,
+        "folder": str(folder),
+        "steps": config.run.steps,
+        "base": sweep.base,
+        "settings": list(point.settings),
+        "laws": [str(Path(path).absolute()) for path in laws],
+    }
 
 
 def _check_finished(folder: Path, wanted: dict) -> None:

@@ -1,9 +1,10 @@
-"""What every command does with its outputs: check the folder before anything runs, write valid JSON.
+"""What every command does with its outputs: check the folder before anything runs, write valid JSON,
+report an error on one line.
 
 :func:`check_folder` finds an output folder that cannot be written (a file in the way, no
 permission, a read-only file system) before a simulation starts, not after it; it creates nothing.
 :func:`dumps` writes JSON as RFC 8259 defines it: a number that is not finite (a chi^2 over a zero
-error, say) becomes null, never ``NaN`` or ``Infinity``.
+error, say) becomes null, never ``NaN`` or ``Infinity``. :func:`fail` prints ``prog: error``.
 """
 
 from __future__ import annotations
@@ -11,10 +12,14 @@ from __future__ import annotations
 import json
 import math
 import os
+import sys
 import tempfile
 from pathlib import Path
 
-from ..errors import ConfigError
+from ...errors import ConfigError
+
+#: The files of a run's folder that are not tables (fricgen.app.run.runner writes them).
+CHECKPOINT, TRAJECTORY, SUMMARY, CONFIG = "checkpoint.npz", "trajectory.gsd", "summary.json", "config.json"
 
 
 def check_folder(folder: Path, key: str) -> None:
@@ -52,3 +57,9 @@ def finite(data):
 def dumps(data) -> str:
     """Valid JSON of ``data`` (indented), with null for numbers that are not finite."""
     return json.dumps(finite(data), indent=2, allow_nan=False)
+
+
+def fail(prog: str, error: Exception | str, status: int) -> int:
+    """Print ``prog: error`` on one line of stderr and return the exit status ``status``."""
+    print(f"{prog}: {' '.join(str(error).split())}", file=sys.stderr)
+    return status

@@ -19,9 +19,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..langevin.analysis import block_estimate, temperatures, velocity_profile
-from ..langevin.simulation import Simulation
-from ..langevin.system import Particles
+from ...langevin.analysis import block_estimate, temperatures, velocity_profile
+from ...langevin.simulation import Simulation
+from ...langevin.system import Particles
 
 
 class Periodic:
@@ -60,7 +60,7 @@ class Table:
 
 
 def observable_table(name: str, folder: Path, particles: Particles, bins: int) -> Table:
-    """The writer of observable ``name`` (one of fricgen.app.config.OBSERVABLES) into ``folder/name.csv``."""
+    """The writer of observable ``name`` (one of fricgen.app.run.config.OBSERVABLES) into ``folder/name.csv``."""
     path = folder / f"{name}.csv"
     if name == "temperatures":
         return Table(path, ["T_trans", "T_rot"], lambda simulation: np.array(temperatures(simulation.state, particles)))

@@ -2,7 +2,7 @@
 of law names, and the commands on law files, ``fricgen verify`` and ``fricgen generate``.
 
 A law name is looked up in the user's law folders, then in the built-in catalogue
-(derive.catalogues); the kernels of a folder DIR are generated into DIR/generated/.
+(fricgen.derive.law.catalogues); the kernels of a folder DIR are generated into DIR/generated/.
 """
 
 from __future__ import annotations
@@ -14,11 +14,11 @@ import sys
 from collections.abc import Iterator
 from pathlib import Path
 
-from derive.calculus import CALCULI
-from derive.catalogues import LAWS_ENV, CatalogueError, find_law, laws_by_catalogue, user_folders, user_laws
+from fricgen.derive.calculus import CALCULI
+from fricgen.derive.law.catalogues import LAWS_ENV, CatalogueError, find_law, laws_by_catalogue, user_folders, user_laws
 
-from ..errors import ConfigError
-from .outputs import check_folder, dumps
+from ...errors import ConfigError
+from ..run.outputs import check_folder, dumps
 
 LAWS_HELP = (
     "a folder of your own law files (LAW.toml), searched before the built-in catalogue; its kernels live in DIR/generated/ "
@@ -62,7 +62,7 @@ def check_law_names(names: list[str]) -> None:
 
 def check_calculus(law: str, calculus: str) -> None:
     """The law's generated kernels exist, are fresh and have the calculus (ConfigError at --calculus)."""
-    from ..kernels import load_law_kernels
+    from ...kernels import load_law_kernels
 
     calculi = load_law_kernels(law).calculi
     if calculus not in calculi:
@@ -72,7 +72,7 @@ def check_calculus(law: str, calculus: str) -> None:
 def verify(args: argparse.Namespace) -> int:
     """fricgen verify [LAW ...] [--calculus C|all] [--laws DIR] [--json]: derive and verify, exit 1 on failure."""
     check_law_names(args.laws)
-    from derive import derive_noise, load_law, verify
+    from fricgen.derive import derive_noise, load_law, verify
 
     named = set(args.laws)
     calculi = CALCULI if args.calculus == "all" else (args.calculus,)
@@ -106,7 +106,7 @@ def generate(args: argparse.Namespace) -> int:
     check_law_names(args.laws)
     if args.output:
         check_folder(Path(args.output), "--output")
-    from derive.emit import generate
+    from fricgen.derive.driver import generate
 
     groups = laws_by_catalogue(args.laws)
     if args.output and len(groups) > 1:

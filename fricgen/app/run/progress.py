@@ -11,7 +11,7 @@ import sys
 
 from tqdm import tqdm
 
-from ..langevin.simulation import Simulation
+from ...langevin.simulation import Simulation
 
 
 class ProgressBar:

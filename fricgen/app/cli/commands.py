@@ -2,7 +2,7 @@
 
 Exit status: 0 done, 1 a physical failure (a failed check, a run that blew up), 2 bad input
 (one line on stderr naming the flag or key, the problem and the fix), 130 interrupted. Errors of
-fricgen's own family (fricgen.errors), of the symbolic layer (derive.errors) and of the argument
+fricgen's own family (fricgen.errors), of the symbolic layer (fricgen.derive.errors) and of the argument
 parser print one line; anything else is a bug and keeps its traceback. A negative number after a
 flag is its value (``--dt -1e-3`` reads as ``--dt=-1e-3``, and the range check answers).
 """
@@ -14,14 +14,14 @@ import dataclasses
 import sys
 import typing
 
-from derive.calculus import CALCULI
-from derive.errors import DeriveError
+from fricgen.derive.calculus import CALCULI
+from fricgen.derive.errors import DeriveError
 
-from ..errors import FricgenError
+from ...errors import FricgenError
+from ..run.outputs import dumps, fail
 from . import laws
 from .arguments import Parser, UsageError, join_negative_values, named_by_flags
 from .lammps import add_lammps_command
-from .outputs import dumps
 
 
 def _floats(text: str) -> list[float]:
@@ -76,7 +76,7 @@ CHECK_FLAGS = {
 
 def _thermostat_check(args: argparse.Namespace) -> int:
     """fricgen thermostat-check LAW ...: the statistical test of a law's thermostat, as JSON."""
-    from ..langevin.thermostat_check import passive_check, passive_run
+    from ..studies.thermostat_check import passive_check, passive_run
 
     laws.check_law_names([args.law])
     laws.check_calculus(args.law, args.calculus)
@@ -111,7 +111,7 @@ def _demo(args: argparse.Namespace) -> int:
     Exit status 1 if the run with the contact noise fails the check (the one without is meant to)."""
     from pathlib import Path
 
-    from .demo import describe, run_demo
+    from ..studies.demo import describe, run_demo
 
     summary = run_demo(Path(args.out))
     print(dumps(summary) if args.json else describe(summary, Path(args.out)))
@@ -120,14 +120,14 @@ def _demo(args: argparse.Namespace) -> int:
 
 def _run(args: argparse.Namespace) -> int:
     """fricgen run CONFIG [--set KEY=VALUE ...] [--steps N] [--out DIR] [--resume CHECKPOINT] [--laws DIR] [--json]."""
-    from .runner import execute, plan
+    from ..run.runner import execute, plan
 
     return execute(plan(args.config, args.set, args.steps, args.out, args.resume, args.law_folders), args.json)
 
 
 def _sweep(args: argparse.Namespace) -> int:
     """fricgen sweep SWEEP [--scheduler ADDRESS] [--workers N] [--out DIR] [--laws DIR] [--json]."""
-    from .sweep import SweepRequest, run_sweep
+    from ..sweep.runner import SweepRequest, run_sweep
 
     return run_sweep(SweepRequest(args.sweep, args.out, args.scheduler, args.workers, tuple(args.law_folders)), args.json)
 
@@ -136,8 +136,8 @@ def _bcd(args: argparse.Namespace) -> int:
     """fricgen bcd ...: hard or sticky rods by BCD against the exact theory; CSV, PNG, JSON summary."""
     from pathlib import Path
 
-    from ..rods.config import rod_config
-    from .rods_study import Study, study
+    from ...rods.config import rod_config
+    from ..studies.rods import Study, study
 
     values = {name: getattr(args, name) for name in _rod_fields()}
     with named_by_flags(_rod_flags()):
@@ -183,8 +183,8 @@ ROD_HELP = {
 
 
 def _rod_fields() -> dict:
-    from ..rods.config import PARTS
-    from ..schema import flat_fields
+    from ...rods.config import PARTS
+    from ...schema import flat_fields
 
     return flat_fields(*PARTS)
 
@@ -218,7 +218,7 @@ def _add_rod_flags(command: argparse.ArgumentParser) -> None:
 
 
 def parser() -> argparse.ArgumentParser:
-    from ..langevin.config import CONTACT_SCHEMES, Thermostat
+    from ...langevin.config import CONTACT_SCHEMES, Thermostat
 
     main = Parser(prog="fricgen", description=__doc__)
     commands = main.add_subparsers(dest="command", required=True)
@@ -319,17 +319,11 @@ def main(argv: list[str] | None = None) -> int:
         with laws.law_search(args):
             return args.run(args)
     except UsageError as error:
-        return _fail(error.prog, error, 2)
+        return fail(error.prog, error, 2)
     except (FricgenError, DeriveError) as error:
-        return _fail(prog, error, getattr(error, "exit_status", 2))
+        return fail(prog, error, getattr(error, "exit_status", 2))
     except KeyboardInterrupt:
-        return _fail(prog, "interrupted", 130)
-
-
-def _fail(prog: str, error: Exception | str, status: int) -> int:
-    """Print ``prog: error`` on one line of stderr and return the exit status."""
-    print(f"{prog}: {' '.join(str(error).split())}", file=sys.stderr)
-    return status
+        return fail(prog, "interrupted", 130)
 
 
 if __name__ == "__main__":

@@ -19,11 +19,11 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass, field
 
-from ..schema import Section
-from .analysis import Sampler, block_estimate, kl_divergence
-from .config import LangevinConfig, Law, Thermostat
-from .simulation import Simulation
-from .system import CLOSE_PACKING, Particles, cubic_side, interaction_reach, lattice_limit, lattice_state, memory_estimate
+from ...langevin.analysis import Sampler, block_estimate, kl_divergence
+from ...langevin.config import LangevinConfig, Law, Thermostat
+from ...langevin.simulation import Simulation
+from ...langevin.system import CLOSE_PACKING, Particles, cubic_side, interaction_reach, lattice_limit, lattice_state, memory_estimate
+from ...schema import Section
 
 #: Spheres and packing fraction of the check when not given, per dimension (the paper's passive check).
 DEFAULT_N, DEFAULT_PHI = {2: 256, 3: 216}, {2: 0.6, 3: 0.3}
