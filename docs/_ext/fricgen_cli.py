@@ -1,0 +1,159 @@
+"""The command-line reference, generated from fricgen's own argparse parser.
+
+A page writes a heading per command and, under it::
+
+    ```{fricgen-cli} verify
+    ```
+
+which renders the command's one-line help, its usage and one entry per argument (flags, metavar or
+choices, help text, default) as the parser has them, so the reference cannot drift from the code.
+``{fricgen-cli}`` without an argument renders the top-level command. When the build ends, a
+subcommand that no page documented is a warning (an error under ``sphinx-build -W``).
+
+The parser is found through the ``fricgen`` console script: the function ``parser()`` in the module
+that defines its ``main`` (override with ``fricgen_cli_parser = "module:function"`` in conf.py).
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import importlib.metadata
+import os
+
+from docutils import nodes
+from docutils.parsers.rst import directives
+from sphinx.util import logging
+from sphinx.util.docutils import SphinxDirective
+
+logger = logging.getLogger(__name__)
+
+WIDTH = "100"  # columns of the rendered usage lines (argparse reads COLUMNS)
+
+
+def _parser_function(config_value: str | None):
+    """The function that builds the parser: ``module:function`` from conf.py, else ``parser`` beside the script's ``main``."""
+    if config_value:
+        module, _, name = config_value.partition(":")
+        return getattr(importlib.import_module(module), name)
+    script = next(e for e in importlib.metadata.entry_points(group="console_scripts") if e.name == "fricgen")
+    main = script.load()
+    return getattr(importlib.import_module(main.__module__), "parser")
+
+
+def build_parser(app) -> argparse.ArgumentParser:
+    """fricgen's top-level parser (cached on the Sphinx application)."""
+    if not hasattr(app, "_fricgen_parser"):
+        app._fricgen_parser = _parser_function(app.config.fricgen_cli_parser)()
+    return app._fricgen_parser
+
+
+def subcommands(parser: argparse.ArgumentParser) -> dict[str, tuple[argparse.ArgumentParser, str]]:
+    """Each subcommand's name -> (its parser, its one-line help), in the parser's order."""
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            helps = {choice.dest: choice.help or "" for choice in action._choices_actions}
+            return {name: (sub, helps.get(name, "")) for name, sub in action.choices.items()}
+    return {}
+
+
+def _usage(parser: argparse.ArgumentParser) -> str:
+    before = os.environ.get("COLUMNS")
+    os.environ["COLUMNS"] = WIDTH
+    try:
+        return parser.format_usage().removeprefix("usage: ").strip()
+    finally:
+        if before is None:
+            del os.environ["COLUMNS"]
+        else:
+            os.environ["COLUMNS"] = before
+
+
+def _signature(action: argparse.Action, formatter: argparse.HelpFormatter) -> str:
+    """``--calculus {ito,stratonovich,hk}``, ``--out DIR``, ``LAW ...`` as argparse writes them."""
+    if not action.option_strings:
+        return formatter._format_args(action, formatter._get_default_metavar_for_positional(action))
+    if action.nargs == 0:
+        return ", ".join(action.option_strings)
+    value = formatter._format_args(action, formatter._get_default_metavar_for_optional(action))
+    return ", ".join(f"{flag} {value}" for flag in action.option_strings)
+
+
+def _meaning(action: argparse.Action, formatter: argparse.HelpFormatter) -> str:
+    text = formatter._expand_help(action) if action.help else ""
+    notes = []
+    if action.required and action.option_strings:
+        notes.append("required")
+    shown = action.default not in (None, False, [], argparse.SUPPRESS) and action.nargs != 0
+    if shown and "default" not in text:
+        notes.append(f"default: {action.default}")
+    if notes:
+        text = f"{text} ({'; '.join(notes)})" if text else "; ".join(notes).capitalize()
+    return text
+
+
+def argument_list(parser: argparse.ArgumentParser) -> nodes.definition_list:
+    """One definition-list item per argument (``--help`` left out)."""
+    formatter = parser._get_formatter()
+    items = nodes.definition_list(classes=["fricgen-cli-arguments"])
+    for action in parser._actions:
+        if isinstance(action, (argparse._HelpAction, argparse._SubParsersAction)):
+            continue
+        term = nodes.term()
+        term += nodes.literal(text=_signature(action, formatter))
+        definition = nodes.definition()
+        definition += nodes.paragraph(text=_meaning(action, formatter) or "(no description)")
+        items += nodes.definition_list_item("", term, definition)
+    return items
+
+
+class FricgenCli(SphinxDirective):
+    """``{fricgen-cli} [COMMAND]``: help, usage and arguments of ``fricgen COMMAND`` (or of ``fricgen``)."""
+
+    optional_arguments = 1
+    option_spec = {"no-arguments": directives.flag}
+
+    def run(self) -> list[nodes.Node]:
+        parser = build_parser(self.env.app)
+        commands = subcommands(parser)
+        if not self.arguments:
+            result = [nodes.paragraph(text=parser.description.strip().splitlines()[0])] if parser.description else []
+            result.append(nodes.literal_block(text=_usage(parser), language="text"))
+            return result
+        name = self.arguments[0]
+        if name not in commands:
+            raise self.error(f"fricgen has no command {name!r} (it has: {', '.join(commands)})")
+        self.env.fricgen_cli_documented = getattr(self.env, "fricgen_cli_documented", {})
+        self.env.fricgen_cli_documented[name] = self.env.docname
+        sub, help_line = commands[name]
+        result = [nodes.paragraph(text=help_line)] if help_line else []
+        result.append(nodes.literal_block(text=_usage(sub), language="text"))
+        if "no-arguments" not in self.options:
+            result.append(argument_list(sub))
+        return result
+
+
+def _merge(app, env, docnames, other) -> None:
+    env.fricgen_cli_documented = {**getattr(env, "fricgen_cli_documented", {}), **getattr(other, "fricgen_cli_documented", {})}
+
+
+def _purge(app, env, docname) -> None:
+    documented = getattr(env, "fricgen_cli_documented", {})
+    for name in [n for n, page in documented.items() if page == docname]:
+        del documented[name]
+
+
+def _check_all_documented(app, env) -> None:
+    documented = getattr(env, "fricgen_cli_documented", {})
+    missing = [name for name in subcommands(build_parser(app)) if name not in documented]
+    if missing:
+        logger.warning("fricgen commands without a {fricgen-cli} entry in the docs: %s", ", ".join(missing))
+
+
+def setup(app):
+    app.add_config_value("fricgen_cli_parser", None, "env")
+    app.add_directive("fricgen-cli", FricgenCli)
+    app.connect("env-purge-doc", _purge)
+    app.connect("env-merge-info", _merge)
+    app.connect("env-check-consistency", _check_all_documented)
+    return {"version": "1", "parallel_read_safe": True, "parallel_write_safe": True}
