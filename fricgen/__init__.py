@@ -3,6 +3,8 @@
 The runtime package, in layers (docs/physics.md explains the physics they follow); each
 subpackage's ``__init__`` is its public API:
 
+- ``fricgen.derive``: the symbolic layer (SymPy): laws, their noise and its proof, the code generators;
+- ``fricgen.generated``: the code that fricgen.derive emitted for the built-in laws and potentials;
 - ``fricgen.kernels``: the one loader of generated kernels and their types (the kernel ABI);
 - ``fricgen.rng``: counter-based random numbers and the one registry of noise streams;
 - ``fricgen.schema``, ``fricgen.errors``: typed configuration sections, one error family;
@@ -12,7 +14,8 @@ subpackage's ``__init__`` is its public API:
 
 The engines import only the kernel layer, the RNG, schema/errors and derive's plain-data modules
 (``fricgen.derive.calculus``, ``fricgen.derive.law.lawdata``); never each other, the application or SymPy
-(tests/test_layers.py). ``import fricgen`` itself loads nothing but the error family; it puts TBB
+(tests/test_layers.py). ``import fricgen`` itself loads nothing but the error family
+(:func:`load_law` and :class:`LawKernels` are loaded on first use); it puts TBB
 where Numba finds it, sets the default thread count and clears Numba's cached code of the compiled
 layers when their sources changed (:func:`clear_stale_caches`).
 """
@@ -104,4 +107,15 @@ from .errors import ConfigError, FricgenError, KernelError, SimulationError  # n
 
 __version__ = "0.1.0"
 
-__all__ = ["ConfigError", "FricgenError", "KernelError", "SimulationError", "__version__"]
+#: The names most used in a notebook, loaded on first use (``import fricgen`` stays light).
+_LAZY = {"load_law": "fricgen.kernels", "LawKernels": "fricgen.kernels"}
+
+__all__ = ["ConfigError", "FricgenError", "KernelError", "LawKernels", "SimulationError", "__version__", "load_law"]
+
+
+def __getattr__(name: str):
+    if name not in _LAZY:
+        raise AttributeError(f"module 'fricgen' has no attribute {name!r}")
+    import importlib
+
+    return getattr(importlib.import_module(_LAZY[name]), name)

@@ -40,7 +40,7 @@ import numba
 import numpy as np
 from numba import types
 
-from fricgen.derive.law.catalogues import CatalogueError, find_law, generate_command, is_built_in, kernel_folder, user_laws
+from fricgen.derive.law.catalogues import CatalogueError, find_law, generate_command, is_built_in, kernel_folder, law_folder, user_laws
 from fricgen.derive.law.lawdata import POSITIVE, Interval, LawFileError, potential_source_hash, read_law_data, source_hash, weight_potential
 
 from .errors import ConfigError, KernelError
@@ -82,6 +82,13 @@ class LawKernels:
 
     name: str
     module: ModuleType
+    #: The law file the kernels were generated from (checked fresh when loaded).
+    path: Path | None = None
+
+    @property
+    def source_hash(self) -> str:
+        """The hash of the law file (and of its weight's potential) that the kernels were generated from."""
+        return self.module.SOURCE_HASH
 
     @property
     def parameter_names(self) -> tuple[str, ...]:
@@ -215,7 +222,25 @@ def load_law_kernels(name: str, catalogue: str | Path | None = None) -> LawKerne
     if module.SOURCE_HASH != digest:
         changed = str(path) if weight_potential(data) is None else f"{path} or derive/law/potentials.py (its weight {data['weight']})"
         raise KernelError(f"the kernels of law {name} are stale: {changed} changed after they were generated; run `{command}`")
-    return LawKernels(name, module)
+    return LawKernels(name, module, path)
+
+
+def load_law(name: str, folder: str | Path | None = None) -> LawKernels:
+    """The compiled kernels of the friction law ``name``, resolved once, to hand to an engine::
+
+        law = fricgen.load_law("stribeck", folder="laws")   # laws/stribeck.toml, kernels in laws/generated/
+        Simulation(config, particles, state, law=law)
+
+    ``folder``: the user's law folder that holds LAW.toml (its kernels generated into
+    ``folder/generated/`` by ``fricgen generate --laws folder``); None looks the name up in the folders
+    of ``FRICGEN_LAWS``, then in the built-in catalogue. KernelError if the law is unknown, its kernels
+    missing or stale (with the command that regenerates them)."""
+    if folder is not None:
+        try:
+            folder = law_folder(folder, "load_law's folder")
+        except CatalogueError as error:
+            raise KernelError(str(error)) from error
+    return load_law_kernels(name, folder)
 
 
 def load_potential(name: str) -> ModuleType:
@@ -248,6 +273,7 @@ __all__ = [
     "SCALAR_KERNEL",
     "KernelError",
     "LawKernels",
+    "load_law",
     "load_law_kernels",
     "load_potential",
     "no_weight",

@@ -1,6 +1,6 @@
 """A Langevin simulation of frictional spheres: a configuration on a state, advanced in chunks.
 
-The contact law's kernels come from ``generated/`` through the loader; the contact is integrated in
+The contact law's kernels come from the loader (fricgen.kernels), handed in or looked up by name; the contact is integrated in
 the calculus its noise amplitude D was derived for, pairwise or explicitly (fricgen.langevin.config.Law).
 """
 
@@ -14,7 +14,7 @@ import numba
 import numpy as np
 
 from ..errors import ConfigError, SimulationError
-from ..kernels import load_law_kernels, load_potential, no_weight
+from ..kernels import LawKernels, load_law_kernels, load_potential, no_weight
 from . import integrator
 from .config import LangevinConfig
 from .records import Bodies, Couplings, Dynamics, Motion, NeighborList
@@ -44,14 +44,20 @@ class Simulation:
     and takes the faster (fricgen.langevin.threads); a number fixes it. Results do not depend on it.
     ``neighbor_list``: the engine's Verlet list, handed back in at each call and rebuilt by the engine
     when it no longer holds for the state (fricgen.langevin.neighbors.still_valid), so a state
-    changed between calls is safe."""
+    changed between calls is safe.
+
+    ``law``: the law's kernels, resolved once by the caller (:func:`fricgen.load_law`, for a law of a
+    folder of one's own); by default ``config.law.name`` is looked up when the simulation is created
+    (FRICGEN_LAWS's folders, then the built-in catalogue)."""
 
     threads: int | None = None
 
-    def __init__(self, config: LangevinConfig, particles: Particles, state: State):
+    def __init__(self, config: LangevinConfig, particles: Particles, state: State, law: LawKernels | None = None):
         self.config, self.particles, self.state = config, particles, state
-        law = config.law
-        self.kernels = load_law_kernels(law.name)
+        law, self.kernels = config.law, law if law is not None else load_law_kernels(config.law.name)
+        if self.kernels.name != law.name:
+            handed = f"is {law.name!r}, but the kernels handed to the simulation are those of {self.kernels.name!r}"
+            raise ConfigError("law.name", handed, "give one law")
         self.contact = self.kernels.contact(law.calculus)  # raises for a calculus the law does not have
         fixed = {"sigma": 1.0, "epsilon": config.epsilon}  # the engine scales distances by sigma_ik = R_i + R_k
         params = dict(law.parameters) | {name: value for name, value in fixed.items() if name in self.kernels.parameter_names}

@@ -17,6 +17,8 @@ import gsd.fl
 import gsd.hoomd
 import numpy as np
 
+from ..errors import ConfigError
+from ..kernels import LawKernels, load_law_kernels
 from ..schema import structure
 from .config import LangevinConfig
 from .simulation import Simulation
@@ -101,13 +103,17 @@ def save_checkpoint(path: str | Path, simulation: Simulation) -> Path:
             inertia=p.inertia,
             mobile=p.mobile,
             config=json.dumps(simulation.config.as_dict()),
+            law_file=str(simulation.kernels.path or ""),
+            law_hash=simulation.kernels.source_hash,
         )
     os.replace(temporary, path)
     return path
 
 
-def load_checkpoint(path: str | Path) -> Simulation:
-    """A Simulation that continues exactly where :func:`save_checkpoint` left it."""
+def load_checkpoint(path: str | Path, law: LawKernels | None = None) -> Simulation:
+    """A Simulation that continues exactly where :func:`save_checkpoint` left it, with the kernels
+    ``law`` (:func:`fricgen.load_law`; by default looked up by the stored name). A checkpoint records
+    the law file it ran (path and hash): resuming with kernels of another version of the law is refused."""
     with np.load(Path(path)) as data:
         stored = json.loads(str(data["config"]))
         stored["law"].setdefault("contact_scheme", "explicit")  # written before the pairwise step existed
@@ -122,4 +128,12 @@ def load_checkpoint(path: str | Path) -> Simulation:
             int(data["dim"]),
             int(data["step"]),
         )
-    return Simulation(config, particles, state)
+        recorded = (str(data["law_file"]), str(data["law_hash"])) if "law_hash" in data.files else None
+    law = law if law is not None else load_law_kernels(config.law.name)
+    if recorded is not None and recorded[1] != law.source_hash:
+        ran = recorded[0] or f"law {config.law.name}"
+        raise ConfigError(
+            "law", f"the checkpoint ran {ran} (hash {recorded[1][:12]}), not {law.path or law.name} (hash {law.source_hash[:12]})",
+            "resume with the law file the run started with, or start a new run",
+        )
+    return Simulation(config, particles, state, law)

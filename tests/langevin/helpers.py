@@ -19,10 +19,10 @@ def config(law="coulomb_newton", active_force=0.0, bulk_force=(), **options):
     return LangevinConfig(**sections, active=Active(active_force), bulk=Bulk(tuple(bulk_force)), **options)
 
 
-def passive(law="coulomb_newton", dim=2, n=64, seed=3, **options):
+def passive(law="coulomb_newton", dim=2, n=64, seed=3, law_kernels=None, **options):
     particles = Particles.spheres(n)
     state = lattice_state(particles, dim, 0.6 if dim == 2 else 0.3, seed=seed)
-    return Simulation(config(law, seed=seed, **options), particles, state)
+    return Simulation(config(law, seed=seed, **options), particles, state, law_kernels)
 
 
 def collision(law, **options):
