@@ -133,7 +133,8 @@ def load_checkpoint(path: str | Path, law: LawKernels | None = None) -> Simulati
     if recorded is not None and recorded[1] != law.source_hash:
         ran = recorded[0] or f"law {config.law.name}"
         raise ConfigError(
-            "law", f"the checkpoint ran {ran} (hash {recorded[1][:12]}), not {law.path or law.name} (hash {law.source_hash[:12]})",
+            "law",
+            f"the checkpoint ran {ran} (hash {recorded[1][:12]}), not {law.path or law.name} (hash {law.source_hash[:12]})",
             "resume with the law file the run started with, or start a new run",
         )
     return Simulation(config, particles, state, law)
