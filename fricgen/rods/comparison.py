@@ -30,7 +30,7 @@ def exact_profile(config: RodConfig) -> RodProfile:
 
 
 def deviations(measured: RodProfiles, exact: RodProfile, contact: bool = True) -> dict[str, float | None]:
-    """Profile vs exact bin means: max |d rho|, L1 / rho_bar, chi^2 per bin. With ``contact`` (hard
+    """Profile vs exact bin means: ``max |d rho|``, L1 / rho_bar, chi^2 per bin. With ``contact`` (hard
     rods): chi^2 per bin of rho_2 at contact and the ratio measured / exact (with its standard error),
     over the bins where the exact contact density exceeds 30 % of its maximum."""
     bins = measured.x.size

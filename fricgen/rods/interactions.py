@@ -74,13 +74,13 @@ def pair_kernels(model: RodModel) -> tuple[ModuleType, np.ndarray, float]:
 
 
 def sticky_force_max(gamma: float, p: float, eps: float, kT: float = 1.0, samples: int = 4001) -> float:
-    """max |f_p(r)| over the interaction range (B-32): the s = sigma + eps - r in (0, eps] maximum."""
+    """``max |f_p(r)|`` over the interaction range (B-32): the s = sigma + eps - r in (0, eps] maximum."""
     s = np.linspace(eps / samples, eps, samples)
     return float(np.max(kT * gamma * p * s ** (p - 1) / (eps ** (p + 1) / (p + 1) + gamma * s**p)))
 
 
 def best_exponent(eps: float, gamma: float = 1.0) -> float:
-    """The exponent p > 1 minimising max |f_p| for given eps (the paper's Fig. 5: p ~ 2.95 at 0.05)."""
+    """The exponent p > 1 minimising ``max |f_p|`` for given eps (the paper's Fig. 5: p ~ 2.95 at 0.05)."""
     from scipy.optimize import minimize_scalar
 
     return float(minimize_scalar(lambda p: sticky_force_max(gamma, p, eps), bounds=(1.01, 20.0), method="bounded").x)
