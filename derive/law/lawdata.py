@@ -13,6 +13,7 @@ import json
 import math
 import os
 import re
+import stat
 import tempfile
 import tomllib
 from dataclasses import dataclass
@@ -96,13 +97,15 @@ def parse_range(text: str, what: str) -> Interval:
 
 
 def read_law_data(path: str | Path) -> dict:
-    """The TOML table of a law file: its bytes read once, as UTF-8 text (LawFileError otherwise)."""
+    """The TOML table of a law file: its bytes read once, as UTF-8 text (LawFileError otherwise, also
+    for a FIFO, a folder or a device: never waited on)."""
     path = Path(path)
     try:
-        with path.open("rb") as file:
-            raw = file.read(MAX_LAW_FILE + 1)
+        raw = read_regular(path, MAX_LAW_FILE)
     except FileNotFoundError as error:
         raise LawFileError(f"{path}: no such law file") from error
+    except NotAFile as error:
+        raise LawFileError(f"{path}: is {error.kind}, not a law file (a law file is a TOML text file, NAME.toml)") from error
     except OSError as error:
         raise LawFileError(f"{path}: cannot read the law file: {error.strerror or error}") from error
     if len(raw) > MAX_LAW_FILE:
@@ -115,6 +118,63 @@ def read_law_data(path: str | Path) -> dict:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise LawFileError(f"{path}: not valid TOML: {error}") from error
+
+
+# --- files that are read as data: regular files only, never waited on ----------------------------
+
+
+class NotAFile(OSError):
+    """A path that exists but is no regular file (``kind``: "a FIFO", "a folder", ...)."""
+
+    def __init__(self, path: Path, kind: str):
+        super().__init__(f"{path} is {kind}")
+        self.kind = kind
+
+
+_KIND_NAMES = ((stat.S_ISDIR, "a folder"), (stat.S_ISFIFO, "a FIFO (named pipe)"), (stat.S_ISSOCK, "a socket"))
+
+
+def file_kind(path: str | Path) -> str:
+    """What ``path`` is, in words: "a regular file", "a folder", "a FIFO (named pipe)", "a socket",
+    "a device", "a dangling symbolic link" or "missing" (symbolic links followed)."""
+    try:
+        mode = os.stat(path).st_mode
+    except FileNotFoundError:
+        return "a dangling symbolic link" if os.path.lexists(path) else "missing"
+    except OSError as error:
+        return f"unreadable ({error.strerror or error})"
+    if stat.S_ISREG(mode):
+        return "a regular file"
+    return next((name for test, name in _KIND_NAMES if test(mode)), "a device")
+
+
+def read_regular(path: str | Path, limit: int) -> bytes:
+    """At most ``limit`` + 1 bytes of the regular file ``path`` (symbolic links followed), opened
+    without blocking so that a FIFO or a device is refused (:class:`NotAFile`), never waited on.
+    FileNotFoundError (also for a dangling link) or OSError otherwise."""
+    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0)
+    try:
+        descriptor = os.open(path, flags)
+    except FileNotFoundError:
+        if os.path.lexists(path):
+            raise NotAFile(Path(path), "a dangling symbolic link") from None
+        raise
+    except IsADirectoryError:
+        raise NotAFile(Path(path), "a folder") from None
+    try:
+        mode = os.fstat(descriptor).st_mode
+        if not stat.S_ISREG(mode):
+            raise NotAFile(Path(path), next((name for test, name in _KIND_NAMES if test(mode)), "a device"))
+        chunks, left = [], limit + 1
+        while left > 0:
+            chunk = os.read(descriptor, min(left, 1 << 20))
+            if not chunk:
+                break
+            chunks.append(chunk)
+            left -= len(chunk)
+        return b"".join(chunks)
+    finally:
+        os.close(descriptor)
 
 
 def _describe(value: object) -> str:

@@ -10,10 +10,18 @@ are stored as small JSON files in a user cache folder:
 
 Entries are keyed on a hash of the sources the proof depends on (derive/noise/phase_space.py,
 derive/law/symbols.py and this module), the generator version (fricgen.derive.law.lawdata.GENERATOR_VERSION) and
-the SymPy version. An entry is written atomically (a temporary file renamed into place); an entry
-that cannot be read, holds another key or has the wrong shape is ignored and the fact is proven
-again (and rewritten). A folder that cannot be written is not an error: the fact is just not kept.
-No code is ever evaluated from the cache (the rational is parsed by ``fractions.Fraction``).
+the SymPy version. An entry is written atomically (a temporary file renamed into place).
+
+The cache is an optimisation, never a source of truth: an entry is used only if it is a regular file
+(opened without blocking: a FIFO, a folder or a device in its place is a miss, never waited on), of
+at most :data:`MAX_ENTRY` bytes, whose ``sha256`` (over its own key, name and facts, canonical JSON)
+holds, with this key and name, and whose facts are what a proof establishes: the lemma holds with
+nu/mu = 1 - theta of the calculus (fricgen.derive.calculus; the value the proof reads off the
+current), and every covariance identity of the dimension is there and true. Anything else (damaged,
+foreign, a negative or vacuous fact such as an empty set of identities or an nu/mu of another
+calculus) is ignored: the fact is proven again and the entry rewritten. A folder that cannot be
+written is not an error: the fact is just not kept. No code is ever evaluated from the cache (the
+rational is parsed by ``fractions.Fraction``).
 """
 
 from __future__ import annotations
@@ -28,13 +36,18 @@ from pathlib import Path
 
 import sympy as sp
 
+from ..calculus import Calculus
 from ..law import symbols
-from ..law.lawdata import GENERATOR_VERSION
+from ..law.lawdata import GENERATOR_VERSION, read_regular
 from . import phase_space
 
 CACHE_ENV = "FRICGEN_CACHE"
 #: The sources whose bytes key the cache (besides the generator and SymPy versions).
 SOURCES = (Path(phase_space.__file__), Path(symbols.__file__), Path(__file__))
+#: Largest entry read, in bytes (an entry is about 200).
+MAX_ENTRY = 64 * 1024
+#: The identities that :func:`fricgen.derive.noise.phase_space.covariance_identities` proves, by dimension.
+IDENTITIES = {2: ("sigma_hat",), 3: ("sigma_hat", "random_force")}
 
 
 def cache_folder() -> Path | None:
@@ -72,16 +85,25 @@ def _entry(name: str) -> Path | None:
     return None if folder is None or not key else folder / f"{name}-{key[:16]}.json"
 
 
+def _digest(key: str, name: str, facts: dict) -> str:
+    payload = json.dumps({"key": key, "name": name, "facts": facts}, sort_keys=True, separators=(",", ":"))
+    return hashlib.sha256(payload.encode()).hexdigest()
+
+
 def read_entry(name: str) -> dict | None:
-    """The cached facts of ``name``, or None (no cache, no entry, unreadable, or another key)."""
+    """The cached facts of ``name``, or None (no cache, no entry, not a regular file, unreadable,
+    another key or name, or a payload that does not match its sha256)."""
     path = _entry(name)
     if path is None:
         return None
     try:
-        data = json.loads(path.read_text())
+        raw = read_regular(path, MAX_ENTRY)
+        data = json.loads(raw) if len(raw) <= MAX_ENTRY else None
     except (OSError, ValueError):
         return None
-    if not isinstance(data, dict) or data.get("key") != cache_key() or not isinstance(data.get("facts"), dict):
+    if not isinstance(data, dict) or data.get("key") != cache_key() or data.get("name") != name or not isinstance(data.get("facts"), dict):
+        return None
+    if data.get("sha256") != _digest(data["key"], name, data["facts"]):
         return None
     return data["facts"]
 
@@ -91,7 +113,8 @@ def write_entry(name: str, facts: dict) -> Path | None:
     path = _entry(name)
     if path is None:
         return None
-    text = json.dumps({"key": cache_key(), "name": name, "facts": facts}, indent=1, sort_keys=True)
+    key = cache_key()
+    text = json.dumps({"key": key, "name": name, "facts": facts, "sha256": _digest(key, name, facts)}, indent=1, sort_keys=True)
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{name}-", suffix=".tmp")
@@ -116,11 +139,14 @@ def _rational(text) -> sp.Rational | None:
     return sp.Rational(value.numerator, value.denominator)
 
 
-def _lemma_from(facts: dict) -> phase_space.Lemma:
-    holds = facts["holds"]
-    if not isinstance(holds, bool):
-        raise ValueError(f"holds must be a boolean, got {holds!r}")
-    return phase_space.Lemma(holds, _rational(facts["nu_over_mu"]))
+def _lemma_from(facts: dict, calculus: str) -> phase_space.Lemma:
+    """The Lemma of a cached entry if it states what the proof establishes (the lemma holds, with
+    nu/mu = 1 - theta of ``calculus``); ValueError for anything else, a negative fact included."""
+    holds, ratio = facts["holds"], _rational(facts["nu_over_mu"])
+    expected = 1 - Calculus(calculus).theta
+    if holds is not True or ratio is None or ratio != sp.Rational(expected.numerator, expected.denominator):
+        raise ValueError(f"not the proven lemma of the {calculus} calculus: holds = {holds!r}, nu/mu = {ratio}")
+    return phase_space.Lemma(True, ratio)
 
 
 @cache
@@ -130,9 +156,9 @@ def zero_current(dim: int, calculus: str) -> phase_space.Lemma:
     facts = read_entry(name)
     if facts is not None:
         try:
-            return _lemma_from(facts)
+            return _lemma_from(facts, calculus)
         except (KeyError, TypeError, ValueError, ZeroDivisionError):
-            pass  # a damaged entry: prove again
+            pass  # a damaged or vacuous entry: prove again
     lemma = phase_space.zero_current_lemma(dim, calculus)
     ratio = None if lemma.nu_over_mu is None else str(lemma.nu_over_mu)
     write_entry(name, {"holds": lemma.holds, "nu_over_mu": ratio})
@@ -141,10 +167,11 @@ def zero_current(dim: int, calculus: str) -> phase_space.Lemma:
 
 @cache
 def covariance(dim: int) -> dict[str, bool]:
-    """:func:`fricgen.derive.noise.phase_space.covariance_identities`, read from the cache or proven and stored."""
+    """:func:`fricgen.derive.noise.phase_space.covariance_identities`, read from the cache (only an entry
+    with exactly the identities of the dimension, each true) or proven and stored."""
     name = f"covariance_{dim}d"
     facts = read_entry(name)
-    if facts and all(isinstance(v, bool) for v in facts.values()):
+    if facts is not None and sorted(facts) == sorted(IDENTITIES.get(dim, ())) and all(v is True for v in facts.values()):
         return dict(facts)
     facts = phase_space.covariance_identities(dim)
     write_entry(name, dict(facts))

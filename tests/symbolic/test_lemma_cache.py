@@ -5,24 +5,30 @@ facts are right is test_phase_space's job (it proves them without the cache).
 """
 
 import json
+import os
+import threading
 
 import pytest
 import sympy as sp
+
+from fricgen.derive.calculus import Calculus
 from fricgen.derive.noise import lemma_cache, phase_space
 
 
 @pytest.fixture
 def cache(tmp_path, monkeypatch):
-    """An empty cache folder and a prover that counts its calls (returns the Itô facts)."""
+    """An empty cache folder and a prover that counts its calls (returns the facts of the calculus:
+    the lemma holds with nu/mu = 1 - theta)."""
     calls = []
 
     def prove(dim, calculus):
         calls.append((dim, calculus))
-        return phase_space.Lemma(True, sp.Integer(1))
+        ratio = 1 - Calculus(calculus).theta
+        return phase_space.Lemma(True, sp.Rational(ratio.numerator, ratio.denominator))
 
     monkeypatch.setenv(lemma_cache.CACHE_ENV, str(tmp_path / "cache"))
     monkeypatch.setattr(phase_space, "zero_current_lemma", prove)
-    monkeypatch.setattr(phase_space, "covariance_identities", lambda dim: {"sigma_hat": True})
+    monkeypatch.setattr(phase_space, "covariance_identities", lambda dim: dict.fromkeys(lemma_cache.IDENTITIES[dim], True))
     lemma_cache.clear_memory()
     yield tmp_path / "cache", calls
     lemma_cache.clear_memory()
@@ -44,7 +50,14 @@ def test_cold_then_warm(cache):
     assert lemma_cache.covariance(2) == {"sigma_hat": True}
     lemma_cache.clear_memory()
     assert lemma_cache.covariance(2) == {"sigma_hat": True}
+    assert len(calls) == 1
     assert not [name for name in entries(folder) if name.endswith(".tmp")]  # atomic: no leftovers
+
+
+def _entry_text(name: str, facts: dict, key: str | None = None) -> str:
+    """An entry as write_entry writes it (its sha256 right), for the facts given."""
+    key = lemma_cache.cache_key() if key is None else key
+    return json.dumps({"key": key, "name": name, "facts": facts, "sha256": lemma_cache._digest(key, name, facts)})
 
 
 @pytest.mark.parametrize(
@@ -52,25 +65,103 @@ def test_cold_then_warm(cache):
     [
         "{not json",
         "[]",
-        json.dumps({"key": "another", "facts": {"holds": True, "nu_over_mu": "1"}}),
-        json.dumps({"facts": {"holds": True, "nu_over_mu": "1"}}),
-        "KEY:" + json.dumps({"holds": "yes", "nu_over_mu": "1"}),
+        json.dumps({"key": "another", "facts": {"holds": True, "nu_over_mu": "0"}}),
+        json.dumps({"facts": {"holds": True, "nu_over_mu": "0"}}),
+        "KEY:" + json.dumps({"holds": "yes", "nu_over_mu": "0"}),
         "KEY:" + json.dumps({"holds": True, "nu_over_mu": "__import__('os').getcwd()"}),
         "KEY:" + json.dumps({"holds": True, "nu_over_mu": 0.5}),
         "KEY:" + json.dumps({"holds": True}),
+        "UNSIGNED",  # the right facts, but no sha256 over them
+        "TAMPERED",  # the right sha256, another payload
+        "OTHERNAME",  # a whole entry of another lemma, renamed
     ],
 )
 def test_damaged_or_foreign_entries_are_proven_again(cache, damage):
     folder, calls = cache
     lemma_cache.zero_current(2, "hk")
     (entry,) = folder.iterdir()
+    good = {"holds": True, "nu_over_mu": "0"}
     if damage.startswith("KEY:"):
-        damage = json.dumps({"key": lemma_cache.cache_key(), "facts": json.loads(damage[4:])})
+        damage = _entry_text("zero_current_2d_hk", json.loads(damage[4:]))
+    elif damage == "UNSIGNED":
+        damage = json.dumps({"key": lemma_cache.cache_key(), "name": "zero_current_2d_hk", "facts": good})
+    elif damage == "TAMPERED":
+        data = json.loads(_entry_text("zero_current_2d_hk", good))
+        damage = json.dumps({**data, "facts": {"holds": True, "nu_over_mu": "1"}})
+    elif damage == "OTHERNAME":
+        damage = _entry_text("zero_current_2d_ito", good)
     entry.write_text(damage)
     lemma_cache.clear_memory()
-    assert lemma_cache.zero_current(2, "hk") == phase_space.Lemma(True, 1)
+    assert lemma_cache.zero_current(2, "hk") == phase_space.Lemma(True, 0)
     assert len(calls) == 2
-    assert json.loads(entry.read_text())["facts"] == {"holds": True, "nu_over_mu": "1"}  # rewritten
+    assert json.loads(entry.read_text())["facts"] == good  # rewritten
+
+
+@pytest.mark.parametrize(
+    ("name", "facts"),
+    [
+        ("zero_current_3d_ito", {"holds": True, "nu_over_mu": "0"}),  # the HK ratio under Itô: D = f/u would verify
+        ("zero_current_3d_ito", {"holds": True, "nu_over_mu": "1/2"}),
+        ("zero_current_3d_ito", {"holds": True, "nu_over_mu": None}),
+        ("zero_current_3d_ito", {"holds": False, "nu_over_mu": "1"}),  # a negative fact is no source of truth either
+        ("covariance_3d", {}),  # no identity at all: "all true" would be vacuous
+        ("covariance_3d", {"sigma_hat": True}),  # one of the two identities of 3-D missing
+        ("covariance_3d", {"sigma_hat": True, "random_force": True, "extra": True}),
+        ("covariance_3d", {"other": True, "random_force": True}),
+        ("covariance_3d", {"sigma_hat": True, "random_force": 1}),
+        ("covariance_3d", {"sigma_hat": False, "random_force": True}),
+    ],
+)
+def test_vacuous_or_wrong_facts_are_proven_again(cache, name, facts):
+    """An entry whose sha256 is right (a cache written by hand, or by a broken version) is still used
+    only if it states what the proof establishes."""
+    folder, calls = cache
+    folder.mkdir()
+    path = folder / f"{name}-{lemma_cache.cache_key()[:16]}.json"
+    path.write_text(_entry_text(name, facts))
+    if name.startswith("zero_current"):
+        assert lemma_cache.zero_current(3, "ito") == phase_space.Lemma(True, 1)
+        assert calls == [(3, "ito")]
+    else:
+        assert lemma_cache.covariance(3) == {"sigma_hat": True, "random_force": True}
+    stored = json.loads(path.read_text())["facts"]
+    assert json.dumps(stored, sort_keys=True) != json.dumps(facts, sort_keys=True)  # rewritten with the proven facts
+
+
+def test_the_proven_facts_are_read_back(cache):
+    folder, calls = cache
+    folder.mkdir()
+    for calculus in ("ito", "stratonovich", "hk"):
+        ratio = str(1 - Calculus(calculus).theta)
+        name = f"zero_current_3d_{calculus}"
+        (folder / f"{name}-{lemma_cache.cache_key()[:16]}.json").write_text(_entry_text(name, {"holds": True, "nu_over_mu": ratio}))
+        assert lemma_cache.zero_current(3, calculus).holds
+    assert calls == []
+
+
+@pytest.mark.parametrize("kind", ["fifo", "folder", "dangling", "huge"])
+def test_an_entry_that_is_not_a_small_regular_file_is_a_miss_never_a_wait(cache, kind):
+    """A FIFO in place of an entry would block a plain open() forever: the read is non-blocking,
+    bounded in time (a thread with a deadline) and in size."""
+    folder, calls = cache
+    folder.mkdir()
+    path = folder / f"zero_current_3d_ito-{lemma_cache.cache_key()[:16]}.json"
+    if kind == "fifo":
+        os.mkfifo(path)
+    elif kind == "folder":
+        path.mkdir()
+    elif kind == "dangling":
+        path.symlink_to(folder / "nowhere")
+    else:
+        path.write_text(" " * (lemma_cache.MAX_ENTRY + 1) + _entry_text("zero_current_3d_ito", {"holds": True, "nu_over_mu": "1"}))
+    result = []
+    reader = threading.Thread(target=lambda: result.append(lemma_cache.read_entry("zero_current_3d_ito")), daemon=True)
+    reader.start()
+    reader.join(10)
+    assert not reader.is_alive(), "read_entry waited on a non-regular file"
+    assert result == [None]
+    if kind != "folder":
+        assert lemma_cache.zero_current(3, "ito").holds and calls == [(3, "ito")]
 
 
 def test_key_follows_sources_generator_and_sympy(cache, tmp_path, monkeypatch):
