@@ -38,7 +38,7 @@ from sympy.core.function import AppliedUndef
 from sympy.printing.str import StrPrinter
 
 from .lawdata import LawFileError
-from .symbols import PYTHON_NAMES, RESERVED
+from .symbols import reserved_reason
 
 MAX_CHARS = 2000
 MAX_NODES = 500
@@ -298,8 +298,9 @@ def check_parameter_name(name: object, what: str) -> None:
         raise LawError(f"{what}: parameter name {shown} must be an ASCII identifier not starting with '_' or 'cse'")
     if name in FUNCTIONS or name in CONSTANTS:
         raise LawError(f"{what}: parameter name {name!r} is the name of a function or constant of expressions; rename it")
-    if name in RESERVED or name in PYTHON_NAMES:
-        raise LawError(f"{what}: parameter name {name!r} is reserved (a symbol, a Python name or a name of the kernels)")
+    reason = reserved_reason(name)
+    if reason:
+        raise LawError(f"{what}: parameter name {name!r} is reserved: {reason}; rename it")
 
 
 class _ExprText(StrPrinter):

@@ -2,16 +2,19 @@
 bad file or expression is refused with one line naming the problem (parse level: no derivation)."""
 
 import json
+import os
+import re
 import time
 
 import pytest
 import sympy as sp
+from sympy.parsing.sympy_parser import parse_expr
+
 from fricgen.derive import catalogue, load_law, make_law, save_law
 from fricgen.derive.errors import DeriveError
-from fricgen.derive.law.expressions import MAX_CHARS, MAX_DEPTH, MAX_NODES, parse_expression, time_limit
+from fricgen.derive.law.expressions import MAX_CHARS, MAX_DEPTH, MAX_NODES, LawError, parse_expression, time_limit
 from fricgen.derive.law.lawdata import CATALOGUE, LawFileError, read_law_data, source_hash
 from fricgen.derive.law.symbols import r, u, w
-from sympy.parsing.sympy_parser import parse_expr
 
 GAMMA = {"gamma_f": {"default": 1.0}}
 
@@ -203,6 +206,49 @@ def test_parameters_may_not_shadow_functions_constants_or_python_names():
     assert make_law("fine", "E*u", {"E": {"default": 2.0}}).friction == 2 * u / 2 * sp.Symbol("E", positive=True)
 
 
+@pytest.mark.parametrize(
+    ("name", "problem"),
+    [
+        ("INFINITY", "a macro, type or function of C/C++"),
+        ("NAN", "a macro, type or function of C/C++"),
+        ("M_PI", "a macro, type or function of C/C++"),
+        ("errno", "a macro, type or function of C/C++"),
+        ("EDOM", "a macro, type or function of C/C++"),
+        ("fabs", "a macro, type or function of C/C++"),
+        ("uint64_t", "a macro, type or function of C/C++"),
+        ("MPI_COMM_WORLD", "a macro, type or function of C/C++"),
+        ("FLERR", "a macro, type or function of C/C++"),
+        ("new", "a C++ keyword"),
+        ("template", "a C++ keyword"),
+        ("register", "a C++ keyword"),
+        ("a__b", "double underscore"),
+        ("erfcx", "a name of the generated kernels"),
+        ("expm1_given_exp", "a name of the generated kernels"),
+        ("switch_0", "a name of the generated kernels"),
+        ("noise_amplitude_ito", "a name of the generated kernels"),
+        ("friction_over_u", "a name of the generated kernels"),
+        ("fricgen_powi", "a name of the generated kernels"),
+        ("gaussian_tail", "a name of the generated kernels"),
+        ("params", "a name of the generated kernels"),
+        ("std", "a name of the generated kernels"),
+        ("_gaussian_tail", "not starting with '_'"),
+        ("abs", "a Python keyword or builtin"),
+        ("class", "a Python keyword or builtin"),
+    ],
+)
+def test_parameter_names_of_the_target_languages_and_our_helpers_are_refused(name, problem):
+    """A parameter is a variable of the Numba and the C++ kernels: names those languages reserve, or
+    that the generated code defines, are refused when the law is read, on one line."""
+    with pytest.raises(LawError, match=re.escape(problem)) as refused:
+        make_law("bad", f"{name}*u", {name: {"default": 1.0}})
+    assert "\n" not in str(refused.value) and f"parameter name {name!r}" in str(refused.value)
+
+
+def test_ordinary_physics_names_stay_allowed():
+    for name in ("E", "E0", "F0", "U0", "A", "T", "gamma_t", "mu_s", "alpha", "theta", "k", "t", "lo", "total", "order", "D"):
+        assert make_law("fine", f"{name}*u", {name: {"default": 1.0}}).parameters[0].name == name
+
+
 def test_expressions_from_python_are_written_so_that_they_load(tmp_path):
     g = sp.Symbol("gamma_f", positive=True)
     law = make_law("euler", sp.E * g * u * (2 + sp.tanh(u)), GAMMA)
@@ -278,7 +324,11 @@ def test_unreadable_law_files(tmp_path):
     _refused("too large for a law file", load_law, huge)
     _refused("no such law file", load_law, tmp_path / "missing.toml")
     (tmp_path / "folder.toml").mkdir()
-    _refused("cannot read the law file", load_law, tmp_path / "folder.toml")
+    _refused("is a folder, not a law file", load_law, tmp_path / "folder.toml")
+    os.mkfifo(tmp_path / "fifo.toml")  # opened without blocking: refused at once, never waited on
+    _refused("is a FIFO (named pipe), not a law file", load_law, tmp_path / "fifo.toml")
+    (tmp_path / "dangling.toml").symlink_to(tmp_path / "nowhere.toml")
+    _refused("is a dangling symbolic link, not a law file", load_law, tmp_path / "dangling.toml")
     for bad in ("__init__", "lambda"):
         path = tmp_path / f"{bad}.toml"
         path.write_text(f'name = "{bad}"\nfriction = "u"\n')
