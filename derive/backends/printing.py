@@ -50,6 +50,18 @@ def _scaled_erfc(expr: sp.Mul) -> sp.Expr:
     return sp.Mul(*rest) * erfcx(b) * sp.exp(sp.expand(growth.args[0] - b**2))
 
 
+def _distribute_exp(expr: sp.Mul) -> sp.Expr:
+    """exp(A) (t_1 + t_2 + ...) -> exp(A) t_1 + exp(A) t_2 + ... (each product's exps combined) where
+    some t_k holds an erfc: the erfcx rewrite then sees exp and erfc in one product (the closed forms of
+    exponential-polynomial laws, whose simplified D keeps exp(u^2/2a) outside the sum)."""
+    exps = [f for f in expr.args if isinstance(f, sp.exp)]
+    sums = [f for f in expr.args if f.is_Add and f.has(sp.erfc)]
+    if len(exps) != 1 or len(sums) != 1:
+        return expr
+    rest = [f for f in expr.args if f is not exps[0] and f is not sums[0]]
+    return sp.Mul(*rest) * sp.Add(*[sp.powsimp(exps[0] * term) for term in sums[0].args])
+
+
 def _expm1_pairs(expr: sp.Add) -> sp.Expr:
     terms = list(expr.args)
     for i, term in enumerate(terms):
@@ -118,6 +130,7 @@ def stabilize(expr: sp.Expr) -> sp.Expr:
     holds assumption-free symbols of the same names (it is meant for printing only; valid since
     all symbols of a law are positive, or nonnegative for a parameter whose range holds 0).
     """
+    expr = expr.replace(lambda e: e.is_Mul, _distribute_exp)
     expr = expr.replace(lambda e: e.is_Mul, _scaled_erfc)
     expr = expr.replace(lambda e: e.is_Add, _expm1_pairs)
     expr = expr.replace(lambda e: e.is_Add, _sech_squared)

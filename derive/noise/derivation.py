@@ -13,8 +13,9 @@ force / velocity (friction coefficient); the random contact force is sqrt(D) tim
 noise of variance 2 kT per unit time.
 
 Closed forms: f is split at its branch points (Min, Max, Piecewise) into pieces on intervals of
-u; on each piece a polynomial in u integrates exactly with the Gaussian moments
-I_n(x) = int_x^oo s^n exp(-s^2/2a) ds (I_0 with erfc, I_1 elementary, then a recurrence).
+u; on each piece an exponential polynomial sum_c P_c(u) exp(c u) (polynomials P_c, rates c free of u:
+Stribeck's law among them) integrates exactly with the Gaussian moments
+I_n(x) = int_x^oo s^n exp(-s^2/2a) ds after completing the square (:mod:`.closed_forms`).
 Other laws keep the exact integral (F-22), evaluated by quadrature downstream, and so do laws whose
 branches SymPy cannot decide (a branch point it cannot solve for, order or place): then f stays one
 piece on [0, oo). ``NoiseModel.reason`` says why a model has no closed form. A Min, Max or
@@ -35,6 +36,7 @@ from ..calculus import Calculus
 from ..law.expressions import snippet, time_limit
 from ..law.laws import FrictionLaw, LawError
 from ..law.symbols import kT, mu, r, s, u, w
+from .closed_forms import gaussian_tail_moment, tail
 
 
 def contact_mobility(m_i, m_k, radius_i, radius_k, inertia_i=None, inertia_k=None) -> sp.Expr:
@@ -64,7 +66,7 @@ class NoiseModel:
         closed_form: False when ``amplitude`` is the integral representation (F-22).
         mobility: the contact mobility mu (a symbol or an expression of particle properties).
         reason: for the integral form, why no closed form was found (a branch of f that is no
-            polynomial in u, or branches SymPy cannot decide); D then keeps the integral (F-22),
+            exponential polynomial in u, or branches SymPy cannot decide); D then keeps the integral (F-22),
             evaluated by quadrature. Empty for a closed form.
     """
 
@@ -279,30 +281,8 @@ def _piecewise(parts: list[tuple[sp.Expr, Branch]]) -> sp.Expr:
 # --- closed forms ---------------------------------------------------------------------------
 
 
-def gaussian_tail_moment(n: int, x: sp.Expr, a: sp.Expr) -> sp.Expr:
-    """I_n(x) = int_x^oo s^n exp(-s^2/(2a)) ds, exactly; I_n(oo) = 0."""
-    if x == sp.oo:
-        return sp.Integer(0)
-    if n == 0:
-        return sp.sqrt(sp.pi * a / 2) * sp.erfc(x / sp.sqrt(2 * a))
-    if n == 1:
-        return a * sp.exp(-(x**2) / (2 * a))
-    return a * x ** (n - 1) * sp.exp(-(x**2) / (2 * a)) + (n - 1) * a * gaussian_tail_moment(n - 2, x, a)
-
-
-def _tail(expr: sp.Expr, x: sp.Expr, a: sp.Expr) -> sp.Expr | None:
-    """int_x^oo expr(s) exp(-s^2/2a) ds for expr polynomial in u, else None."""
-    try:
-        poly = sp.Poly(sp.expand(expr), u)
-    except sp.PolynomialError:
-        return None
-    if any(c.has(u) for c in poly.coeffs()):
-        return None
-    return sp.Add(*[c * gaussian_tail_moment(m[0], x, a) for m, c in zip(poly.monoms(), poly.coeffs())])
-
-
 def closed_form_amplitude(friction: sp.Expr, a: sp.Expr) -> sp.Expr | None:
-    """(F-22) in closed form when every branch of f is a polynomial in u, else None."""
+    """(F-22) in closed form when every branch of f is an exponential polynomial in u (.closed_forms), else None."""
     return _closed_form(friction, a)[0]
 
 
@@ -313,13 +293,13 @@ def _closed_form(friction: sp.Expr, a: sp.Expr) -> tuple[sp.Expr | None, str]:
         return None, undecided
     parts = []
     for j, piece in enumerate(pieces):
-        head = _tail(piece.expr, u, a)
+        head = tail(piece.expr, u, a)
         if head is None:
             where = "" if len(pieces) == 1 else f" on {piece.lower} <= u < {piece.upper}"
-            return None, f"f = {snippet(str(piece.expr), 80)}{where} is not a polynomial in u"
-        total = head - _tail(piece.expr, piece.upper, a)
+            return None, f"f = {snippet(str(piece.expr), 80)}{where} is not a sum of polynomials in u times exp(c u)"
+        total = head - tail(piece.expr, piece.upper, a)
         for later in pieces[j + 1 :]:
-            total += _tail(later.expr, later.lower, a) - _tail(later.expr, later.upper, a)
+            total += tail(later.expr, later.lower, a) - tail(later.expr, later.upper, a)
         amplitude = sp.powsimp(sp.expand(sp.exp(u**2 / (2 * a)) / a * total))
         parts.append((sp.simplify(amplitude), piece))
     return _piecewise(parts), ""

@@ -94,7 +94,7 @@ def _gaussian_tail(u, a, w, r, params):
 def noise_amplitude_ito(u, w, r, mu, kT, params):
     """D(u) = (1/a) int_u^oo f(s) exp(-(s**2 - u**2)/(2*a)) ds (F-22), a = kT nu = kT*mu (ito calculus),
     f(s) = kappa_f*w*tanh(s/u0): Gauss-Legendre quadrature on geometric panels (_gaussian_tail).
-    No closed form: f = kappa_f*w*tanh(u/u0) is not a polynomial in u."""
+    No closed form: f = kappa_f*w*tanh(u/u0) is not a sum of polynomials in u times exp(c u)."""
     return _gaussian_tail(u, kT*mu, w, r, params)
 
 
@@ -114,7 +114,7 @@ def contact_ito(u, w, r, mu, kT, params):
 def noise_amplitude_stratonovich(u, w, r, mu, kT, params):
     """D(u) = (1/a) int_u^oo f(s) exp(-(s**2 - u**2)/(2*a)) ds (F-22), a = kT nu = kT*mu/2 (stratonovich calculus),
     f(s) = kappa_f*w*tanh(s/u0): Gauss-Legendre quadrature on geometric panels (_gaussian_tail).
-    No closed form: f = kappa_f*w*tanh(u/u0) is not a polynomial in u."""
+    No closed form: f = kappa_f*w*tanh(u/u0) is not a sum of polynomials in u times exp(c u)."""
     return _gaussian_tail(u, (1/2)*kT*mu, w, r, params)
 
 

@@ -48,7 +48,7 @@ def _wrong(model, amplitude=None, calculus=None):
     )
 
 
-@pytest.mark.parametrize("name", ["coulomb", "coulomb_newton", "viscous_cubic", "smooth_coulomb"])
+@pytest.mark.parametrize("name", ["coulomb", "coulomb_newton", "viscous_cubic", "smooth_coulomb", "stribeck"])
 def test_ito_amplitude_with_stratonovich_current_fails(laws, name):
     model = _wrong(derive_noise(laws[name], "ito"), calculus=Calculus.STRATONOVICH)
     report = verify(model)

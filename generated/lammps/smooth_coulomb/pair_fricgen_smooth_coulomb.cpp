@@ -211,7 +211,7 @@ inline double gaussian_tail(double u, double a, double w, double r, const double
 
 // D(u) = (1/a) int_u^oo f(s) exp(-(s**2 - u**2)/(2*a)) ds (F-22), a = kT nu = kT*mu (ito calculus),
 // f(s) = kappa_f*w*tanh(s/u0): Gauss-Legendre quadrature on geometric panels (gaussian_tail).
-// No closed form: f = kappa_f*w*tanh(u/u0) is not a polynomial in u.
+// No closed form: f = kappa_f*w*tanh(u/u0) is not a sum of polynomials in u times exp(c u).
 inline double noise_amplitude_ito(double u, double w, double r, double mu, double kT, const double *params)
 {
   return gaussian_tail(u, kT*mu, w, r, params);
