@@ -23,6 +23,7 @@ extensions = [
     "sphinx.ext.mathjax",
     "sphinx.ext.viewcode",
     "fricgen_cli",  # docs/_ext/fricgen_cli.py: the command-line reference, generated from the argparse parser
+    "fricgen_laws",  # docs/_ext/fricgen_laws.py: the table of the built-in catalogue, read from its law files
 ]
 
 exclude_patterns = ["_build", "Thumbs.db", ".DS_Store", "**.ipynb_checkpoints"]
@@ -34,10 +35,11 @@ nb_execution_mode = "off"
 
 autodoc_member_order = "bysource"
 autodoc_typehints = "description"
-autodoc_default_options = {"members": True, "show-inheritance": False}
+autodoc_default_options = {"members": True, "undoc-members": True}
 napoleon_google_docstring = True
 napoleon_numpy_docstring = False
 napoleon_use_rtype = False
+napoleon_use_ivar = True  # "Attributes:" as a field list: dataclass fields are also documented as members
 
 html_theme = "furo"
 html_title = f"fricgen {release}"
