@@ -1,23 +1,18 @@
 """Your law, your folder: law files outside the package (``--laws DIR``, FRICGEN_LAWS, ``law.folder``),
 their kernels generated into DIR/generated/ and loaded from there with the freshness check; and the
-same as a user does it, with the package installed by ``pip install .`` into a fresh environment."""
+same with the package installed from a wheel: tests/test_install.py."""
 
-import hashlib
 import json
 import os
 import re
 import shutil
-import site
-import subprocess
-import sys
-import sysconfig
 from pathlib import Path
 
 import pytest
 
-from derive.catalogues import GENERATED, CatalogueError, user_laws
-from derive.lawdata import CATALOGUE
 from fricgen.app.cli import main
+from fricgen.derive.law.catalogues import GENERATED, CatalogueError, user_laws
+from fricgen.derive.law.lawdata import CATALOGUE
 from fricgen.kernels import KernelError, load_law_kernels
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -70,7 +65,7 @@ def test_the_kernels_load_from_the_folder_by_every_route(laws, monkeypatch):
     assert direct.module.__name__.startswith("fricgen_user_laws_") and direct.module.__name__.endswith(".laws.user_viscous")
     with user_laws(laws):
         assert load_law_kernels("user_viscous").module is direct.module
-        assert load_law_kernels("linear").module.__name__ == "generated.laws.linear"  # built-in laws stay reachable
+        assert load_law_kernels("linear").module.__name__ == "fricgen.generated.laws.linear"  # built-in laws stay reachable
     with pytest.raises(KernelError, match="unknown law 'user_viscous'"):
         load_law_kernels("user_viscous")  # outside the block, without FRICGEN_LAWS
     monkeypatch.setenv("FRICGEN_LAWS", os.pathsep.join([str(laws), str(laws)]))
@@ -137,61 +132,3 @@ def test_stale_kernels_are_refused_and_reloaded_after_regeneration(laws, tmp_pat
         load_law_kernels("user_viscous", catalogue=folder)
     assert main(["generate", "--laws", str(folder), "user_viscous"]) == 0
     assert load_law_kernels("user_viscous", catalogue=folder).parameters()[0] == 3.0  # the new module, in the same process
-
-
-# --- as a user: pip install . into a fresh environment -------------------------------------------
-
-
-def _files(folder: Path) -> dict[str, str]:
-    """sha256 of every file under ``folder`` but Python's and Numba's caches (__pycache__)."""
-    return {
-        str(p.relative_to(folder)): hashlib.sha256(p.read_bytes()).hexdigest()
-        for p in sorted(folder.rglob("*"))
-        if p.is_file() and "__pycache__" not in p.parts
-    }
-
-
-def test_a_user_installs_the_package_and_brings_a_law(tmp_path):
-    """``pip install .`` (not editable) of a copy of the sources into a fresh venv; in a folder outside
-    the repository a law file, `fricgen generate --laws`, `fricgen noise`, `fricgen thermostat-check`
-    (law folder from FRICGEN_LAWS); the installed package's files stay as they were. The venv reaches
-    the dependencies of this environment through a .pth file (no network), not its editable fricgen."""
-    source = tmp_path / "source"
-    for package in ("derive", "fricgen", "generated"):
-        shutil.copytree(ROOT / package, source / package, ignore=shutil.ignore_patterns("__pycache__", "*.egg-info"))
-    for name in ("pyproject.toml", "README.md"):
-        shutil.copy2(ROOT / name, source / name)
-    venv = tmp_path / "venv"
-    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True)
-    python = venv / "bin" / "python"
-    unset = ("PYTHONPATH", "PYTHONHOME", "VIRTUAL_ENV", "FRICGEN_LAWS", "NUMBA_CACHE_DIR")
-    env = {k: v for k, v in os.environ.items() if k not in unset}
-    env |= {"PATH": f"{venv / 'bin'}{os.pathsep}{env.get('PATH', '')}", "PIP_DISABLE_PIP_VERSION_CHECK": "1", "PIP_NO_INPUT": "1"}
-    work = tmp_path / "work"  # the user's folder, outside the repository
-    work.mkdir()
-
-    def run(*args, **variables):
-        return subprocess.run([str(a) for a in args], cwd=work, env=env | variables, capture_output=True, text=True, timeout=600)
-
-    purelib = Path(run(python, "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])").stdout.strip())
-    (purelib / "_dependencies.pth").write_text("\n".join(dict.fromkeys([*site.getsitepackages(), sysconfig.get_paths()["purelib"]])) + "\n")
-    probe = run(python, "-c", "import pip, setuptools; assert tuple(map(int, setuptools.__version__.split('.')[:2])) >= (70, 1)")
-    if probe.returncode:
-        pytest.fail(f"pip install --no-build-isolation needs pip and setuptools >= 70.1 (the [test] extra): {probe.stderr.strip()}")
-    install = run(python, "-m", "pip", "install", "--no-deps", "--no-build-isolation", "--no-index", "--quiet", source)
-    assert install.returncode == 0, install.stdout + install.stderr
-    where = run(python, "-c", "import derive, fricgen, generated; print(derive.__file__, fricgen.__file__, generated.__file__)")
-    assert all(Path(f).is_relative_to(purelib) for f in where.stdout.split()), where.stdout + where.stderr
-    installed = {package: _files(purelib / package) for package in ("derive", "fricgen", "generated")}
-    assert installed["derive"]["catalogue/linear.toml"] and installed["generated"]["laws/linear.py"]
-
-    write_law(work / "laws")
-    generate = run(venv / "bin" / "fricgen", "generate", "--laws", "laws", "user_viscous")
-    assert generate.returncode == 0, generate.stderr
-    assert (work / "laws" / "generated" / "laws" / "user_viscous.py").is_file()
-    noise = run("fricgen", "noise", "--laws", "laws", "user_viscous", "--u", "0,1", "--w", "1", "--json")
-    assert noise.returncode == 0 and json.loads(noise.stdout)["D"] == [2.0, 2.0], noise.stderr
-    check = run("fricgen", "thermostat-check", "user_viscous", "--n", "16", "--time", "4", "--json", FRICGEN_LAWS="laws")
-    assert check.returncode in (0, 1) and json.loads(check.stdout)["law"] == "user_viscous", check.stderr
-    assert {package: _files(purelib / package) for package in installed} == installed, "the installed package was written to"
-    assert list((work / "laws" / "generated" / "laws" / "__pycache__").glob("user_viscous.*.nbi")), "Numba caches beside the kernels"
