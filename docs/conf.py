@@ -35,7 +35,8 @@ nb_execution_mode = "off"
 
 autodoc_member_order = "bysource"
 autodoc_typehints = "description"
-autodoc_default_options = {"members": True, "undoc-members": True}
+autodoc_typehints_description_target = "documented"  # types of documented arguments; a dataclass's fields carry their own
+autodoc_default_options = {"members": True, "undoc-members": True, "exclude-members": "SECTION"}
 napoleon_google_docstring = True
 napoleon_numpy_docstring = False
 napoleon_use_rtype = False
@@ -45,3 +46,4 @@ html_theme = "furo"
 html_title = f"fricgen {release}"
 html_static_path = []
 pygments_style = "sphinx"
+smartquotes = False  # "--laws" stays two hyphens in prose and in the help texts of the CLI reference

@@ -82,7 +82,7 @@ def _signature(action: argparse.Action, formatter: argparse.HelpFormatter) -> st
 def _meaning(action: argparse.Action, formatter: argparse.HelpFormatter) -> str:
     text = formatter._expand_help(action) if action.help else ""
     notes = []
-    if action.required and action.option_strings:
+    if action.required and action.nargs not in ("*", "?"):  # argparse marks a "*" positional required too
         notes.append("required")
     shown = action.default not in (None, False, [], argparse.SUPPRESS) and action.nargs != 0
     if shown and "default" not in text:
@@ -90,6 +90,15 @@ def _meaning(action: argparse.Action, formatter: argparse.HelpFormatter) -> str:
     if notes:
         text = f"{text} ({'; '.join(notes)})" if text else "; ".join(notes).capitalize()
     return text
+
+
+def _paragraph(text: str) -> nodes.paragraph:
+    """A paragraph of help text, its ``literal`` spans (reST markup in docstrings) as code."""
+    paragraph = nodes.paragraph()
+    for i, part in enumerate(text.split("``")):
+        if part:
+            paragraph += nodes.literal(text=part) if i % 2 else nodes.Text(part)
+    return paragraph
 
 
 def argument_list(parser: argparse.ArgumentParser) -> nodes.definition_list:
@@ -102,7 +111,7 @@ def argument_list(parser: argparse.ArgumentParser) -> nodes.definition_list:
         term = nodes.term()
         term += nodes.literal(text=_signature(action, formatter))
         definition = nodes.definition()
-        definition += nodes.paragraph(text=_meaning(action, formatter) or "(no description)")
+        definition += _paragraph(_meaning(action, formatter))
         items += nodes.definition_list_item("", term, definition)
     return items
 
@@ -117,7 +126,7 @@ class FricgenCli(SphinxDirective):
         parser = build_parser(self.env.app)
         commands = subcommands(parser)
         if not self.arguments:
-            result = [nodes.paragraph(text=parser.description.strip().splitlines()[0])] if parser.description else []
+            result = [_paragraph(parser.description.strip().splitlines()[0])] if parser.description else []
             result.append(nodes.literal_block(text=_usage(parser), language="text"))
             return result
         name = self.arguments[0]
@@ -126,7 +135,7 @@ class FricgenCli(SphinxDirective):
         self.env.fricgen_cli_documented = getattr(self.env, "fricgen_cli_documented", {})
         self.env.fricgen_cli_documented[name] = self.env.docname
         sub, help_line = commands[name]
-        result = [nodes.paragraph(text=help_line)] if help_line else []
+        result = [_paragraph(help_line)] if help_line else []
         result.append(nodes.literal_block(text=_usage(sub), language="text"))
         if "no-arguments" not in self.options:
             result.append(argument_list(sub))
