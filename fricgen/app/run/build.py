@@ -1,17 +1,21 @@
 """From a validated run configuration to a simulation at step 0: the law and its kernels, the
 particles, the initial state (lattice or random, in the box or in the slab between walls), walls.
 
-Each failure is a :class:`~fricgen.errors.ConfigError` naming the key, raised before any file is
-written. :func:`check` makes the checks of :func:`build` that need no particles (a sweep checks its
-points with it).
+The law's name is resolved here, once (:func:`resolve_law`: the run's law folders, FRICGEN_LAWS's,
+then the built-in catalogue), and the engine is handed the kernels. Each failure is a
+:class:`~fricgen.errors.ConfigError` naming the key, raised before any file is written.
+:func:`check` makes the checks of :func:`build` that need no particles (a sweep checks its points
+with it).
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 from ...errors import ConfigError, KernelError
-from ...kernels import load_law_kernels
+from ...kernels import LawKernels, load_law_kernels, user_laws
 from ...langevin.simulation import Simulation
 from ...langevin.system import (
     Particles,
@@ -26,21 +30,25 @@ from ...langevin.system import (
 from .config import RunConfig, check_fraction, slab_half_height
 
 
-def check_law(c: RunConfig) -> None:
-    """The law is in the catalogue, its kernels are fresh, it has the calculus and the parameters."""
+def resolve_law(c: RunConfig, laws: Sequence[str] = ()) -> LawKernels:
+    """The kernels of the run's law, looked up in the law folders ``laws`` (``--laws``) and the
+    configuration's ``law.folder``, then FRICGEN_LAWS's, then the built-in catalogue; checked: fresh,
+    with the calculus and the parameters. ConfigError naming the key otherwise."""
     name = c.law.name
     try:
-        kernels = load_law_kernels(name)
+        with user_laws(*laws, *c.law.folders):
+            kernels = load_law_kernels(name)
     except KernelError as error:
         raise ConfigError("law.name", str(error)) from error
     if c.law.calculus not in kernels.calculi:
         raise ConfigError("law.calculus", f"law {name} has no {c.law.calculus!r} noise", f"choose one of {list(kernels.calculi)}")
     kernels.parameters(**c.law.parameters)
+    return kernels
 
 
-def check(c: RunConfig) -> None:
-    """What :func:`build` checks before it places the particles: the law (:func:`check_law`) and the box."""
-    check_law(c)
+def check(c: RunConfig, laws: Sequence[str] = ()) -> None:
+    """What :func:`build` checks before it places the particles: the law (:func:`resolve_law`) and the box."""
+    resolve_law(c, laws)
     layout(c)
 
 
@@ -71,9 +79,10 @@ def layout(c: RunConfig) -> tuple[np.ndarray, np.ndarray, int]:
     return box, region, n
 
 
-def build(c: RunConfig) -> Simulation:
-    """The simulation of a validated configuration, from its initial state (step 0)."""
-    check_law(c)
+def build(c: RunConfig, laws: Sequence[str] = ()) -> Simulation:
+    """The simulation of a validated configuration, from its initial state (step 0); ``laws``: the
+    user's law folders (:func:`resolve_law`)."""
+    kernels = resolve_law(c, laws)
     config, s, dim = c.langevin(), c.system, c.system.dimension
     box, region, n = layout(c)
     particles = Particles.spheres(n, s.radius, s.mass)
@@ -92,4 +101,4 @@ def build(c: RunConfig) -> Simulation:
     state = thermal_state(particles, position, box, dim, c.thermostat.kT, c.run.seed)
     if c.walls is not None:
         particles, state = add_slab_walls(particles, state, c.walls.half_width, c.walls.roughness, c.run.seed, c.walls.spacing)
-    return Simulation(config, particles, state)
+    return Simulation(config, particles, state, kernels)

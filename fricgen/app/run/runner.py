@@ -24,7 +24,6 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import ConfigError, SimulationError
-from ...kernels import user_laws
 from ...langevin.simulation import Simulation
 from ...langevin.trajectory import GSDWriter, load_checkpoint, save_checkpoint, truncate_trajectory
 from ...schema import differences
@@ -58,8 +57,7 @@ def plan(source: str, settings: list[str], steps: int | None, out: str | None, r
     command = ["fricgen", "run", source, *(arg for text in settings for arg in ("--set", text))]
     command += ["--steps", str(steps)] if steps is not None else []
     command += [arg for folder in laws for arg in ("--laws", folder)]
-    with user_laws(*laws, *config.law.folders):  # the kernels are loaded here, by build and load_checkpoint
-        return _plan(config, command, out, resume, path.stem)
+    return _plan(config, command, out, resume, path.stem, laws)
 
 
 def check_run(source: str, settings: list[str], laws: Sequence[str] = ()) -> RunConfig:
@@ -67,12 +65,11 @@ def check_run(source: str, settings: list[str], laws: Sequence[str] = ()) -> Run
     particles (the file, the overrides, the law, the box), without building the simulation: a
     sweep's check of its points. ConfigError naming the key and the fix."""
     config = load_config(resolve_source(source), [parse_override(text) for text in settings])
-    with user_laws(*laws, *config.law.folders):
-        check(config)
+    check(config, laws)
     return config
 
 
-def _plan(config: RunConfig, command: list[str], out: str | None, resume: str | None, name: str) -> Plan:
+def _plan(config: RunConfig, command: list[str], out: str | None, resume: str | None, name: str, laws: Sequence[str]) -> Plan:
     if resume is None:
         folder = Path(out) if out else Path(f"fricgen-{name}")
         check_folder(folder, "--out")
@@ -83,16 +80,18 @@ def _plan(config: RunConfig, command: list[str], out: str | None, resume: str | 
                 f"{folder} already holds a run ({', '.join(taken)})",
                 f"give another --out, delete it, or continue it with --resume {folder / CHECKPOINT}",
             )
-        return Plan(config, build(config), folder, False, command)
+        return Plan(config, build(config, laws), folder, False, command)
     checkpoint = Path(resume)
     if not checkpoint.is_file():
         raise ConfigError("--resume", f"no checkpoint file {checkpoint}", "give the checkpoint.npz of the interrupted run")
     if out and Path(out).resolve() != checkpoint.parent.resolve():
         raise ConfigError("--out", f"{out} is not the folder of the checkpoint {checkpoint}", "leave --out away when resuming")
     check_folder(checkpoint.parent, "--resume")
-    fresh = build(config)
+    fresh = build(config, laws)
     try:
-        simulation = load_checkpoint(checkpoint)
+        simulation = load_checkpoint(checkpoint, law=fresh.kernels)
+    except ConfigError:  # a checkpoint of another version of the law
+        raise
     except (OSError, ValueError, KeyError) as error:  # a file that is no checkpoint, or one of another version
         raise ConfigError(
             "--resume", f"cannot read the checkpoint {checkpoint}: {error}", "give a checkpoint.npz written by fricgen run"
