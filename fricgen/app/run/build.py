@@ -10,7 +10,9 @@ with it).
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
+from pathlib import Path
 
 import numpy as np
 
@@ -19,6 +21,7 @@ from ...kernels import LawKernels, load_law_kernels, user_laws
 from ...langevin.simulation import Simulation
 from ...langevin.system import (
     Particles,
+    State,
     add_slab_walls,
     ball_volume,
     interaction_reach,
@@ -79,6 +82,36 @@ def layout(c: RunConfig) -> tuple[np.ndarray, np.ndarray, int]:
     return box, region, n
 
 
+def initial_state(c: RunConfig, particles: Particles, box: np.ndarray) -> State:
+    """The state of ``system.initial``: the positions and body axes of a checkpoint, velocities and
+    spins drawn at kT for ``particles``; ConfigError unless the checkpoint holds as many mobile
+    particles of the same radius in the same box and dimension."""
+    path, dim = Path(c.system.initial), c.system.dimension
+    refuse = functools.partial(ConfigError, "system.initial")
+    if c.walls is not None:
+        raise refuse("a start from a checkpoint is for runs without walls", "leave it out, or remove [walls]")
+    try:
+        with np.load(path) as data:
+            stored = {k: np.array(data[k]) for k in ("position", "orientation", "radius", "mobile", "box", "dim")}
+    except (OSError, ValueError, KeyError) as error:
+        raise refuse(f"cannot read {path} as a checkpoint ({error})", "give the checkpoint.npz of a run") from error
+    n = particles.radius.size
+    same = int(stored["dim"]) == dim and stored["radius"].shape == (n,) and stored["position"].shape == (n, 3)
+    same = same and bool(stored["mobile"].all()) and np.array_equal(stored["radius"], particles.radius)
+    same = same and np.allclose(stored["box"], box, rtol=1e-12, atol=0.0)
+    if not same:
+        held = f"{stored['radius'].size} particles in a {int(stored['dim'])}-D box {np.round(stored['box'], 4).tolist()}"
+        raise refuse(
+            f"{path} holds {held}, not {n} mobile particles of radius {c.system.radius} in {np.round(box, 4).tolist()}",
+            "give the same system as the run that wrote it",
+        )
+    if not (np.isfinite(stored["position"]).all() and np.isfinite(stored["orientation"]).all()):
+        raise refuse(f"{path} holds positions or body axes that are not finite", "give the checkpoint of a run that did not blow up")
+    state = thermal_state(particles, stored["position"], box, dim, c.thermostat.kT, c.run.seed)
+    state.orientation[:] = stored["orientation"]
+    return state
+
+
 def build(c: RunConfig, laws: Sequence[str] = ()) -> Simulation:
     """The simulation of a validated configuration, from its initial state (step 0); ``laws``: the
     user's law folders (:func:`resolve_law`)."""
@@ -89,6 +122,8 @@ def build(c: RunConfig, laws: Sequence[str] = ()) -> Simulation:
     place = region.copy()
     if c.walls is not None:
         place[1] = 2 * slab_half_height(c)
+    if s.initial is not None:
+        return Simulation(config, particles, initial_state(c, particles, box), kernels)
     try:
         if s.start == "lattice":
             position = lattice_positions(n, place, dim, 2 * s.radius)

@@ -50,7 +50,10 @@ class System(Section):
     """``[system]``: ``dimension`` 2 or 3; ``n`` and ``packing_fraction`` (a cubic box), or ``box`` =
     [Lx, Ly(, Lz)] with one of them; sphere ``radius``, ``mass`` (I = 2/5 m R^2); ``epsilon`` of WCA
     (F-34) in kT; ``start`` "lattice" or "random". With walls the packing fraction counts the slab
-    the particles can reach, |y - Ly/2| <= half_width - 2 radius (the paper's accessible volume)."""
+    the particles can reach, |y - Ly/2| <= half_width - 2 radius (the paper's accessible volume).
+    ``initial``: a checkpoint.npz whose positions and body axes the run starts from instead (a
+    cross-start: the state of one run continued with another model or mass; velocities and spins are
+    drawn at kT for this configuration's masses), with the same dimension, box, n and radius."""
 
     SECTION = "system"
     dimension: int = 2
@@ -61,6 +64,7 @@ class System(Section):
     mass: float = 1.0
     epsilon: float = 1.0
     start: str = "lattice"
+    initial: str | None = None
 
     def __post_init__(self):
         self.require(self.dimension in (2, 3), "dimension", f"must be 2 or 3, got {self.dimension}", "set dimension = 2 or 3")
