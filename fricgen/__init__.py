@@ -65,7 +65,15 @@ def clear_stale_caches(root: Path, sources: tuple[str, ...] = COMPILED_SOURCES) 
     ``root``) changed since the last call; returns whether it did. Numba checks a cached function
     only against its own file, yet the cached code holds the compiled functions it calls: after an
     edit of ``neighbors.py``, ``integrator.advance`` would run the old code. Does nothing where
-    ``root`` is not writable (Numba then caches elsewhere) or for a ``NUMBA_CACHE_DIR``."""
+    ``root`` is not writable (Numba then caches elsewhere) or for a ``NUMBA_CACHE_DIR``.
+
+    Args:
+        root: the package folder whose ``__pycache__`` folders hold Numba's caches.
+        sources: the compiled sources, relative to ``root``.
+
+    Returns:
+        Whether the caches were cleared.
+    """
     digest = hashlib.sha256()
     for name in sources:
         path = root / name

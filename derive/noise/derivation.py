@@ -40,9 +40,18 @@ from .closed_forms import gaussian_tail_moment, tail
 
 
 def contact_mobility(m_i, m_k, radius_i, radius_k, inertia_i=None, inertia_k=None) -> sp.Expr:
-    """mu = 1/m_i + 1/m_k + R_i^2/I_i + R_k^2/I_k (units 1/mass); solid spheres by default.
+    """mu = 1/m_i + 1/m_k + R_i^2/I_i + R_k^2/I_k, the contact mobility of a pair (F-21).
 
-    Raises ValueError for non-positive masses, radii or moments of inertia.
+    Args:
+        m_i, m_k: the masses (numbers or SymPy symbols).
+        radius_i, radius_k: the radii R_i, R_k.
+        inertia_i, inertia_k: the moments of inertia; None: solid spheres, I = 2/5 m R^2.
+
+    Returns:
+        mu as a SymPy expression, in units of 1/mass (7 for two default spheres, m = 1, R = 1/2).
+
+    Raises:
+        ValueError: for non-positive masses, radii or moments of inertia.
     """
     m_i, m_k, radius_i, radius_k = (sp.nsimplify(sp.sympify(v)) for v in (m_i, m_k, radius_i, radius_k))
     inertia_i = sp.Rational(2, 5) * m_i * radius_i**2 if inertia_i is None else sp.nsimplify(sp.sympify(inertia_i))

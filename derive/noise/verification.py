@@ -74,8 +74,17 @@ class Report:
 
 
 def prove(model: NoiseModel) -> Report:
-    """The symbolic facts of a noise model (no printed code is checked here: see
-    :func:`fricgen.derive.driver.verify`); never raises for a wrong amplitude, reports it instead."""
+    """The symbolic facts of a noise model: the ODE residual (F-20), zero current on the pair phase
+    space in 3-D and 2-D, the noise covariance (F-50), the boundary condition (F-22), D ≥ 0 and
+    finite. No printed code is checked here (see :func:`fricgen.derive.driver.verify`).
+
+    Args:
+        model: the noise model of one law and calculus (:func:`fricgen.derive.derive_noise`).
+
+    Returns:
+        The report: one boolean per check, details, seconds. A wrong amplitude is reported there,
+        never raised.
+    """
     start = time.perf_counter()
     checks: dict[str, bool] = {}
     details: dict[str, str] = {}

@@ -38,7 +38,7 @@ def _parser_function(config_value: str | None):
         return getattr(importlib.import_module(module), name)
     script = next(e for e in importlib.metadata.entry_points(group="console_scripts") if e.name == "fricgen")
     main = script.load()
-    return getattr(importlib.import_module(main.__module__), "parser")
+    return importlib.import_module(main.__module__).parser
 
 
 def build_parser(app) -> argparse.ArgumentParser:

@@ -18,8 +18,16 @@ from .system import Particles, State
 
 
 def scaled_components(state: State, particles: Particles) -> tuple[np.ndarray, np.ndarray]:
-    """sqrt(m) v and sqrt(I) omega of the mobile particles, one column per degree of freedom
-    (2-D: v_x, v_y and omega_z; 3-D: three each); each has variance kT at equilibrium."""
+    """√m v and √I ω of the mobile particles, one column per degree of freedom (2-D: v_x, v_y and
+    ω_z; 3-D: three each); each has variance kT at equilibrium.
+
+    Args:
+        state: the state.
+        particles: masses and moments of inertia, and which particles are mobile.
+
+    Returns:
+        (√m v, √I ω), each of shape (mobile particles, degrees of freedom), in √(energy).
+    """
     mobile = particles.mobile
     spin_axes = slice(2, 3) if state.dim == 2 else slice(0, 3)
     velocities = state.velocity[mobile, : state.dim] * np.sqrt(particles.mass[mobile, None])
@@ -28,14 +36,32 @@ def scaled_components(state: State, particles: Particles) -> tuple[np.ndarray, n
 
 
 def temperatures(state: State, particles: Particles) -> tuple[float, float]:
-    """Instantaneous kinetic temperatures of translation and rotation of the mobile particles."""
+    """Instantaneous kinetic temperatures of translation and rotation of the mobile particles,
+    T_trans = ⟨m v_a²⟩ and T_rot = ⟨I ω_a²⟩ over their degrees of freedom.
+
+    Args:
+        state: the state.
+        particles: masses and moments of inertia, and which particles are mobile.
+
+    Returns:
+        (T_trans, T_rot), in energy units (kT = 1).
+    """
     velocities, spins = scaled_components(state, particles)
     return float(np.mean(velocities**2)), float(np.mean(spins**2))
 
 
 def velocity_profile(state: State, particles: Particles, bins: int) -> tuple[np.ndarray, np.ndarray]:
-    """Mean v_x and omega_z of the mobile particles in ``bins`` equal slabs along y (slab j spans
-    [j, j + 1) L_y / bins; NaN where a slab is empty): the flow and spin profiles of a slit."""
+    """Mean v_x and ω_z of the mobile particles in ``bins`` equal slabs along y (slab j spans
+    [j, j + 1) L_y / bins): the flow and spin profiles of a slit.
+
+    Args:
+        state: the state.
+        particles: which particles are mobile.
+        bins: the number of slabs.
+
+    Returns:
+        (v_x, ω_z) per slab, in σ/t0 and 1/t0; NaN where a slab is empty.
+    """
     mobile = particles.mobile
     slab = np.minimum((state.position[mobile, 1] / state.box[1] * bins).astype(int), bins - 1)
     counts = np.bincount(slab, minlength=bins).astype(float)
@@ -55,7 +81,21 @@ class Estimate:
 
 
 def block_estimate(series: np.ndarray, blocks: int = 20) -> Estimate:
-    """Mean and standard error of a time series from ``blocks`` contiguous block means."""
+    """Mean and standard error of a time series from ``blocks`` contiguous block means.
+
+    The error is the standard deviation of the block means over √blocks, which counts the series'
+    correlations as long as a block is longer than its correlation time.
+
+    Args:
+        series: the samples, in time order (a trailing remainder shorter than a block is dropped).
+        blocks: the number of blocks.
+
+    Returns:
+        The mean, its standard error and the number of blocks.
+
+    Raises:
+        ValueError: for fewer than 2·blocks samples.
+    """
     series = np.asarray(series, dtype=float)
     if series.size < 2 * blocks:
         raise ValueError(f"need at least {2 * blocks} samples for {blocks} blocks, got {series.size}")
@@ -70,6 +110,14 @@ def kl_divergence(samples: np.ndarray, bins: int = 41, span: float = 4.0) -> flo
     Samples are scaled by the fitted width; the histogram on [-span, span] with ``bins`` bins is
     compared with the Gaussian's exact bin probabilities. The plug-in estimate has a positive bias
     of about (bins - 1) / (2 n) for n independent samples.
+
+    Args:
+        samples: zero-mean samples, e.g. √m v components.
+        bins: the number of histogram bins.
+        span: the half width of the histogram, in fitted standard deviations.
+
+    Returns:
+        The divergence, dimensionless (0 for a perfect Gaussian).
     """
     x = np.asarray(samples, dtype=float).ravel()
     x = x / math.sqrt(np.mean(x**2))
@@ -85,7 +133,16 @@ def kl_divergence(samples: np.ndarray, bins: int = 41, span: float = 4.0) -> flo
 
 
 def maxwell_boltzmann(x: np.ndarray, mass: float, kT: float) -> np.ndarray:
-    """Density of one velocity component, sqrt(m / 2 pi kT) exp(-m x^2 / 2 kT)."""
+    """Density of one velocity component, √(m / 2πkT) exp(−m x² / 2kT).
+
+    Args:
+        x: velocity values, in σ/t0.
+        mass: the mass m.
+        kT: the temperature, in energy units.
+
+    Returns:
+        The probability density at each x, in t0/σ.
+    """
     return np.sqrt(mass / (2 * np.pi * kT)) * np.exp(-mass * x**2 / (2 * kT))
 
 

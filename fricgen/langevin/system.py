@@ -69,7 +69,21 @@ class State:
 
 
 def packing_box(particles: Particles, dim: int, fraction: float) -> np.ndarray:
-    """Cubic (square) box lengths for the area (2-D) or volume (3-D) fraction of the mobile particles."""
+    """Cubic (square) box lengths for the area (2-D) or volume (3-D) fraction of the mobile particles.
+
+    The side is L = (π Σ R_i² / φ)^(1/2) in 2-D and (4π/3 Σ R_i³ / φ)^(1/3) in 3-D.
+
+    Args:
+        particles: the particles; only the mobile ones count.
+        dim: 2 or 3.
+        fraction: the packing fraction φ, in (0, 1).
+
+    Returns:
+        The box lengths (L_x, L_y, L_z) in σ; L_z = 0 in 2-D.
+
+    Raises:
+        ConfigError: for a fraction outside (0, 1).
+    """
     if not 0 < fraction < 1:
         raise ConfigError("fraction", f"packing fraction must be in (0, 1), got {fraction}", "give a smaller value")
     r = particles.radius[particles.mobile]
@@ -180,7 +194,22 @@ def random_positions(radius: np.ndarray, lengths: np.ndarray, dim: int, seed: in
 
 def thermal_state(particles: Particles, position: np.ndarray, box: np.ndarray, dim: int, kT: float = 1.0, seed: int = 1) -> State:
     """A state at the given positions with Maxwell–Boltzmann velocities and spins at kT and random
-    orientations (about z in 2-D); immobile particles are at rest."""
+    orientations (about z in 2-D); immobile particles are at rest.
+
+    Each velocity component has variance kT/m, each spin component kT/I (in 2-D only v_x, v_y and
+    ω_z are drawn); the draws come from the counter-based generator, keyed on ``seed``.
+
+    Args:
+        particles: radii, masses and moments of inertia.
+        position: (N, 3) positions in σ, inside ``box``.
+        box: the box lengths in σ.
+        dim: 2 or 3.
+        kT: the temperature, in energy units.
+        seed: the noise seed (≥ 0).
+
+    Returns:
+        The state at step 0.
+    """
     n = particles.radius.size
     z = normals(seed, 0, INITIAL, 12 * n).reshape(n, 12)
     velocity = z[:, :3] * np.sqrt(kT / particles.mass)[:, None]
@@ -198,7 +227,22 @@ def thermal_state(particles: Particles, position: np.ndarray, box: np.ndarray, d
 
 def lattice_state(particles: Particles, dim: int, fraction: float, kT: float = 1.0, seed: int = 1) -> State:
     """Particles on a square (cubic) lattice in a periodic box, Maxwell–Boltzmann velocities and
-    spins at kT, random orientations; raises ConfigError if the lattice would overlap."""
+    spins at kT, random orientations.
+
+    Args:
+        particles: the particles; the box is sized for their packing fraction (:func:`packing_box`).
+        dim: 2 or 3.
+        fraction: the area (2-D) or volume (3-D) fraction, below the lattice limit (π/4 in 2-D, π/6 in
+            3-D for a square or cube number of particles).
+        kT: the temperature of the velocities and spins, in energy units.
+        seed: the noise seed (≥ 0).
+
+    Returns:
+        The state at step 0.
+
+    Raises:
+        ConfigError: for a dimension other than 2 or 3, or a lattice whose spheres would overlap.
+    """
     if dim not in (2, 3):
         raise ConfigError("dim", f"must be 2 or 3, got {dim}", "give 2 or 3")
     box = packing_box(particles, dim, fraction)
@@ -210,9 +254,23 @@ def add_slab_walls(
     particles: Particles, state: State, half_width: float, roughness: float = 0.0, seed: int = 1, spacing: float = 1.0
 ) -> tuple[Particles, State]:
     """Append two walls of immobile spheres (F-42): a square lattice of lattice constant ``spacing``
-    in the xz-plane (a row along x in 2-D) at y = y_c +- half_width + roughness * zeta_j, y_c the box
-    centre, with the same Gaussian zeta_j on both walls (as in the paper). Wall spheres copy the
-    radius and mass of particle 0. Returns the extended particles and state.
+    in the xz-plane (a row along x in 2-D) at y = y_c ± half_width + roughness·ζ_j, y_c the box
+    centre, with the same Gaussian ζ_j on both walls (as in the paper). Wall spheres copy the
+    radius and mass of particle 0.
+
+    Args:
+        particles: the mobile particles.
+        state: their state; its box sets the walls' extent.
+        half_width: the distance of each wall from the box centre, in σ (0 < 2·half_width < L_y).
+        roughness: the amplitude δ_w of the walls' Gaussian roughness, in σ (≥ 0).
+        seed: the seed of the roughness ζ_j.
+        spacing: the walls' lattice constant, in σ.
+
+    Returns:
+        The particles and the state with the wall spheres appended (immobile, at rest).
+
+    Raises:
+        ConfigError: for a negative roughness, a non-positive spacing or walls outside the box.
     """
     if roughness < 0 or spacing <= 0 or not 0 < 2 * half_width < state.box[1]:
         raise ConfigError("walls", "need roughness >= 0, spacing > 0 and 0 < 2 half_width < L_y", "fix them")

@@ -84,7 +84,16 @@ def truncate_trajectory(path: str | Path, step: int) -> None:
 
 
 def save_checkpoint(path: str | Path, simulation: Simulation) -> Path:
-    """Everything needed to continue bit-identically (state, particles, configuration), atomically."""
+    """Everything needed to continue bit-identically (state, particles, configuration, the law file
+    and its hash), written atomically (a temporary file, then a rename).
+
+    Args:
+        path: the ``.npz`` file to write.
+        simulation: the simulation to save.
+
+    Returns:
+        The path written.
+    """
     path = Path(path)
     s, p = simulation.state, simulation.particles
     temporary = path.with_name(path.name + ".tmp")
@@ -111,9 +120,18 @@ def save_checkpoint(path: str | Path, simulation: Simulation) -> Path:
 
 
 def load_checkpoint(path: str | Path, law: LawKernels | None = None) -> Simulation:
-    """A Simulation that continues exactly where :func:`save_checkpoint` left it, with the kernels
-    ``law`` (:func:`fricgen.load_law`; by default looked up by the stored name). A checkpoint records
-    the law file it ran (path and hash): resuming with kernels of another version of the law is refused."""
+    """A Simulation that continues exactly where :func:`save_checkpoint` left it.
+
+    A checkpoint records the law file it ran (path and hash): resuming with kernels of another
+    version of the law is refused.
+
+    Args:
+        path: a file written by :func:`save_checkpoint`.
+        law: the law's kernels (:func:`fricgen.load_law`); None looks the stored name up.
+
+    Returns:
+        The simulation at the saved step.
+    """
     with np.load(Path(path)) as data:
         stored = json.loads(str(data["config"]))
         stored["law"].setdefault("contact_scheme", "explicit")  # written before the pairwise step existed

@@ -14,7 +14,17 @@ from .theory import HARD_RODS, Neighbours, RodProfile, rod_profile
 
 def exact_profile(config: RodConfig) -> RodProfile:
     """The exact equilibrium (fricgen.rods.theory) of the model a RodConfig simulates, on a ring of its length;
-    the grid (600 to 2400 points per wavelength) has sigma on a grid point."""
+    the grid (600 to 2400 points per wavelength) has sigma on a grid point.
+
+    Args:
+        config: the rods' configuration.
+
+    Returns:
+        The exact profile over one wavelength, with the O(1/L) correction of the ring.
+
+    Raises:
+        ConfigError: for an open line, or a σ/λ that is no fraction k/m with 600 ≤ m ≤ 2400.
+    """
     c = config.model
     if c.open_line:
         raise ConfigError("model.length", "the exact theory is for a ring of finite length, not an open line", "give a finite length")
@@ -30,9 +40,19 @@ def exact_profile(config: RodConfig) -> RodProfile:
 
 
 def deviations(measured: RodProfiles, exact: RodProfile, contact: bool = True) -> dict[str, float | None]:
-    """Profile vs exact bin means: ``max |d rho|``, L1 / rho_bar, chi^2 per bin. With ``contact`` (hard
-    rods): chi^2 per bin of rho_2 at contact and the ratio measured / exact (with its standard error),
-    over the bins where the exact contact density exceeds 30 % of its maximum."""
+    """A measured profile against the exact one's bin means.
+
+    Args:
+        measured: the profiles of :meth:`RodSimulation.run`, with their errors from the replicas.
+        exact: the exact profile (:func:`exact_profile`).
+        contact: also compare the contact density ρ₂(x, x + σ⁺) (hard rods), over the bins where the
+            exact one exceeds 30 % of its maximum.
+
+    Returns:
+        ``max_abs_dev`` (``max |Δρ|``, in 1/λ), ``l1_dev_over_rho`` (``mean |Δρ| / ρ̄``), ``chi2_per_dof`` (χ²
+        per bin); with ``contact``: ``contact_chi2_per_dof``, ``contact_ratio`` (measured / exact) and
+        ``contact_ratio_err``, None where too few pairs were measured.
+    """
     bins = measured.x.size
     rho = exact.bin_means(bins)
     result = {

@@ -36,7 +36,17 @@ def on_arrays(kernel: Callable[[float, np.ndarray], float], params: np.ndarray) 
 
 def field_kernels(model: RodModel) -> tuple[ModuleType, np.ndarray]:
     """The generated external potential of a configuration and its parameter values: U0 and lambda
-    from U0 and wavelength, the others from field_params or its defaults."""
+    from U0 and wavelength, the others from field_params or its defaults.
+
+    Args:
+        model: the rods' model (``field``, ``U0`` in kT, ``wavelength``, ``field_params``).
+
+    Returns:
+        The generated module (``energy``, ``force``, ``force_field``) and its parameter values.
+
+    Raises:
+        ConfigError: when ``field`` names a pair potential, or a parameter is unknown or out of range.
+    """
     module = load_potential(model.field)
     if not hasattr(module, "force_field"):
         raise ConfigError(
@@ -46,16 +56,33 @@ def field_kernels(model: RodModel) -> tuple[ModuleType, np.ndarray]:
 
 
 def field_energy(model: RodModel) -> Callable[[np.ndarray], np.ndarray]:
-    """U(x) of the configuration's field, for arrays of positions."""
+    """U(x) of the configuration's field, for arrays of positions.
+
+    Args:
+        model: the rods' model.
+
+    Returns:
+        A function from positions (in units of λ) to energies (in kT).
+    """
     module, params = field_kernels(model)
     return on_arrays(module.energy, params)
 
 
 def pair_kernels(model: RodModel) -> tuple[ModuleType, np.ndarray, float]:
-    """The interaction of neighbours beyond the hard core: generated module, parameter values and the
-    range a of the gap (V = 0 for r >= sigma + a). The sticky contact (B-32, a = eps; gamma = 0:
+    """The interaction of neighbours beyond the hard core: the sticky contact (B-32, a = eps; gamma = 0:
     V = 0, hard rods) unless ``pair`` names another generated pair potential (B-28), with kT from the
-    config; that one is checked to vanish on [sigma + a, 2 sigma] (neighbours only interact)."""
+    config; that one is checked to vanish on [sigma + a, 2 sigma] (neighbours only interact).
+
+    Args:
+        model: the rods' model.
+
+    Returns:
+        The generated module, its parameter values and the range a of the gap (V = 0 for
+        r ≥ σ + a), in units of λ.
+
+    Raises:
+        ConfigError: when ``pair`` names an external field, or its potential does not vanish beyond σ + a.
+    """
     c = model
     if c.pair is None:
         return load_potential("sticky"), np.array([c.gamma, c.p, c.eps, c.sigma, c.kT]), c.eps
@@ -74,21 +101,48 @@ def pair_kernels(model: RodModel) -> tuple[ModuleType, np.ndarray, float]:
 
 
 def sticky_force_max(gamma: float, p: float, eps: float, kT: float = 1.0, samples: int = 4001) -> float:
-    """``max |f_p(r)|`` over the interaction range (B-32): the s = sigma + eps - r in (0, eps] maximum."""
+    """``max |f_p(r)|`` over the interaction range (B-32): the maximum over s = σ + ε − r in (0, ε].
+
+    Args:
+        gamma: Baxter's stickiness γ.
+        p: the exponent of the δ_ε representation (B-31).
+        eps: its range ε, in units of λ.
+        kT: the thermal energy.
+        samples: grid points in s.
+
+    Returns:
+        The largest force magnitude, in kT/λ.
+    """
     s = np.linspace(eps / samples, eps, samples)
     return float(np.max(kT * gamma * p * s ** (p - 1) / (eps ** (p + 1) / (p + 1) + gamma * s**p)))
 
 
 def best_exponent(eps: float, gamma: float = 1.0) -> float:
-    """The exponent p > 1 minimising ``max |f_p|`` for given eps (the paper's Fig. 5: p ~ 2.95 at 0.05)."""
+    """The exponent p > 1 minimising ``max |f_p|`` for given eps (the paper's Fig. 5: p ~ 2.95 at 0.05).
+
+    Args:
+        eps: the range ε of the δ_ε representation, in units of λ.
+        gamma: Baxter's stickiness γ.
+
+    Returns:
+        The exponent p, dimensionless.
+    """
     from scipy.optimize import minimize_scalar
 
     return float(minimize_scalar(lambda p: sticky_force_max(gamma, p, eps), bounds=(1.01, 20.0), method="bounded").x)
 
 
 def stability_ratio(model: RodModel, dt: float) -> float:
-    """mu max|f| dt / a of (B-33) for the neighbour force of range a (sticky: a = eps); the force is
-    resolved when this is << 1 (0 for hard rods)."""
+    """μ max|f| dt / a of (B-33) for the neighbour force of range a (sticky: a = ε); the force is
+    resolved when this is ≪ 1.
+
+    Args:
+        model: the rods' model.
+        dt: the time step, in units of λ²/D.
+
+    Returns:
+        The ratio, dimensionless (0 for hard rods).
+    """
     if model.hard_rods:
         return 0.0
     module, params, reach = pair_kernels(model)

@@ -286,11 +286,24 @@ def rod_profile(
     points: int = 600,
     ring_length: float | None = None,
 ) -> RodProfile:
-    """Exact profile of rods of length sigma at mean density rho_bar in U(x) (period lambda), with
-    the ``neighbours`` interaction beyond the hard core (default: hard rods). ``ring_length``: the
-    O(1/L) correction for a ring of fixed N = rho_bar L. ``contact`` is the pair density at gap 0+
-    (including W(sigma+); for Baxter without the bonded delta weight). Raises ConfigError beyond
-    close packing (rho_bar sigma >= 1).
+    """Exact equilibrium profile of rods of length σ at mean density ρ̄ in U(x), by the transfer operator.
+
+    Args:
+        potential: U(x) in energy units, for arrays of positions.
+        sigma: the rod length σ (lengths in any one unit, λ = 1 in fricgen.rods).
+        mean_density: ρ̄, with ρ̄σ < 1.
+        wavelength: the period λ of U.
+        kT: the thermal energy.
+        neighbours: the interaction beyond the hard core (default: hard rods).
+        points: grid points per wavelength (σ must lie on a grid point).
+        ring_length: L of a ring of fixed N = ρ̄L, for its O(1/L) correction; None: the infinite line.
+
+    Returns:
+        ρ(x), the pair density at contact ρ₂(x, x + σ⁺) (including W(σ⁺); for Baxter without the
+        bonded delta weight), βμ_ch and βP.
+
+    Raises:
+        ConfigError: at or beyond close packing (ρ̄σ ≥ 1).
     """
     if not 0 < mean_density * sigma < 1:
         raise ConfigError("rod_profile", f"need 0 < rho_bar sigma < 1 (close packing), got {mean_density * sigma}")
@@ -311,8 +324,9 @@ def rod_profile(
 
 
 def percus_residual(profile: RodProfile, potential: Callable[[np.ndarray], np.ndarray], sigma: float, kT: float = 1.0) -> np.ndarray:
-    """Euler–Lagrange equation of Percus's hard-rod functional (B-20b):
-    ln rho(x) - ln(1 - eta(x)) - beta mu_ch + beta U(x) + int_x^{x+sigma} rho / (1 - eta) dy (zero at equilibrium)."""
+    """Euler–Lagrange equation of Percus's hard-rod functional (B-20b), zero at equilibrium:
+    ln ρ(x) − ln(1 − η(x)) − βμ_ch + βU(x) + ∫_x^{x+σ} ρ/(1 − η) dy on the grid of ``profile`` (a
+    hard-rod :func:`rod_profile` in ``potential`` U(x), rod length ``sigma``), dimensionless."""
     grid = Grid(profile.x[1] * profile.x.size, profile.x.size, sigma)
     phi = profile.rho / (1 - profile.eta)
     return np.log(phi) - profile.beta_mu + potential(profile.x) / kT + grid.window(phi, True)
@@ -321,7 +335,9 @@ def percus_residual(profile: RodProfile, potential: Callable[[np.ndarray], np.nd
 def sticky_residual(
     profile: RodProfile, potential: Callable[[np.ndarray], np.ndarray], sigma: float, gamma: float, kT: float = 1.0
 ) -> np.ndarray:
-    """The functional derivative (B-34a..c) of the sticky-rod functional (zero at equilibrium)."""
+    """The functional derivative (B-34a..c) of the sticky-rod functional, zero at equilibrium, on the
+    grid of ``profile`` (Baxter's rods of length ``sigma`` and stickiness ``gamma`` in ``potential``
+    U(x)), dimensionless."""
     grid = Grid(profile.x[1] * profile.x.size, profile.x.size, sigma)
     rho, eta = profile.rho, profile.eta
     ahead, gap_ahead = grid.shift(rho), 1 - grid.shift(eta)  # rho(x + sigma), 1 - eta(x + sigma)
@@ -341,14 +357,31 @@ def sticky_residual(
 
 
 def tonks(mean_density: float, sigma: float) -> tuple[float, float]:
-    """(beta P, beta mu_ch) of the uniform hard-rod fluid (Tonks)."""
+    """βP = ρ̄/(1 − ρ̄σ) and βμ_ch of the uniform hard-rod fluid (Tonks).
+
+    Args:
+        mean_density: ρ̄.
+        sigma: the rod length, ρ̄σ < 1.
+
+    Returns:
+        (βP, βμ_ch): βP in units of ρ̄, βμ_ch dimensionless.
+    """
     packing = mean_density * sigma
     return mean_density / (1 - packing), float(np.log(mean_density / (1 - packing)) + packing / (1 - packing))
 
 
 def sticky_rods(mean_density: float, sigma: float, gamma: float) -> tuple[float, float]:
-    """(beta P, beta mu_ch) of Baxter's uniform sticky rods: beta P (1 + gamma beta P) = rho / (1 - rho sigma),
-    beta mu_ch = beta P sigma + ln[beta P / (1 + gamma beta P)] (isobaric partition function)."""
+    """(βP, βμ_ch) of Baxter's uniform sticky rods: βP (1 + γβP) = ρ̄/(1 − ρ̄σ),
+    βμ_ch = βPσ + ln[βP/(1 + γβP)] (isobaric partition function).
+
+    Args:
+        mean_density: ρ̄.
+        sigma: the rod length, ρ̄σ < 1.
+        gamma: the stickiness γ.
+
+    Returns:
+        (βP, βμ_ch): βP in units of ρ̄, βμ_ch dimensionless.
+    """
     a = mean_density / (1 - mean_density * sigma)
     pressure = (np.sqrt(1 + 4 * gamma * a) - 1) / (2 * gamma) if gamma > 0 else a
     return float(pressure), float(pressure * sigma + np.log(pressure / (1 + gamma * pressure)))

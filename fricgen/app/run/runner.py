@@ -49,8 +49,22 @@ class Plan:
 
 
 def plan(source: str, settings: list[str], steps: int | None, out: str | None, resume: str | None, laws: Sequence[str] = ()) -> Plan:
-    """Everything checked, nothing written: raises ConfigError naming the key and the fix. ``laws``:
-    user law folders (``--laws``), searched with the configuration's ``law.folder``."""
+    """A run of ``fricgen run``, everything checked and nothing written.
+
+    Args:
+        source: a TOML file, or the name of a bundled example (``passive``, ``poiseuille``, ``active``).
+        settings: overrides ``SECTION.KEY=VALUE`` (TOML values), as ``--set``.
+        steps: overrides ``run.steps``; None keeps the file's.
+        out: the output folder; None: ``fricgen-<config name>``.
+        resume: a checkpoint of a stopped run to continue, or None.
+        laws: user law folders (``--laws``), searched with the configuration's ``law.folder``.
+
+    Returns:
+        The plan: the validated configuration, the simulation at its first step and the folder.
+
+    Raises:
+        ConfigError: naming the key, the problem and the fix.
+    """
     path = resolve_source(source)
     overrides = [parse_override(text) for text in settings] + ([("run.steps", steps)] if steps is not None else [])
     config = load_config(path, overrides)
@@ -123,7 +137,15 @@ def _check_resume(config: RunConfig, resumed: Simulation, fresh: Simulation) -> 
 
 
 def execute(plan: Plan, as_json: bool = False) -> int:
-    """Run a plan to the end or to Ctrl-C; returns the exit status."""
+    """Run a plan to the end or to Ctrl-C, writing its outputs (tables, trajectory, checkpoints, summary).
+
+    Args:
+        plan: a plan of :func:`plan`.
+        as_json: print the summary as JSON instead of the report.
+
+    Returns:
+        The exit status: 0 done, 1 blew up, 130 interrupted (a checkpoint to resume from is written).
+    """
     config, simulation, folder = plan.config, plan.simulation, plan.folder
     o, start, clock = config.output, simulation.state.step, time.perf_counter()
     studies = [STUDIES[kind] for kind in config.kinds]  # a kind without its study fails here, before the run

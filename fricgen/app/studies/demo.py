@@ -31,7 +31,15 @@ DEMO = {"law": "coulomb_newton", "calculus": "ito", "dim": 2, "n": 512, "phi": 0
 
 
 def run_demo(folder: Path, **changes) -> dict:
-    """Run the demo (``changes`` override entries of :data:`DEMO`), write its files, return the summary."""
+    """Run the demo, with and without the contact noise, and write its files.
+
+    Args:
+        folder: the output folder (histograms.png, temperatures.png, summary.json).
+        **changes: overrides of entries of ``DEMO`` (``n``, ``dt``, ``total_time`` in t0, ``seed``, ...).
+
+    Returns:
+        The summary, as written to summary.json.
+    """
     setup = {**DEMO, **changes}
     checks = [passive_check(**setup, contact_noise=noise) for noise in (True, False)]
     check_demo_folder(folder)

@@ -176,6 +176,18 @@ def passive_run(check: PassiveCheck, observers: Sequence[Callable[[Simulation], 
 
 
 def thermostat_check(law: str, **options) -> CheckResult:
-    """Run the passive check (flat options as in :func:`passive_check`) and return temperatures,
-    errors, KL divergences and the verdict."""
+    """Run the passive check: a fluid of frictional spheres at kT, started on a lattice; the
+    temperatures of translation and rotation must be kT within ``z_limit`` standard errors and the
+    KL divergences (F-41) below ``kl_limit``.
+
+    Args:
+        law: the law's name.
+        **options: flat options as in :func:`passive_check`: ``dim``, ``n``, ``phi``, ``total_time``
+            (in t0), ``seed``, ``calculus``, ``contact_noise``, ``contact_scheme``, ``parameters``,
+            ``kT``, ``dt``, ``solvent``, ...
+
+    Returns:
+        T_trans, T_rot (in kT) with their block errors, the KL divergences, the verdict ``passed``
+        and, for the pairwise contact step, its rejection rate.
+    """
     return passive_run(passive_check(law, **options))[0]
