@@ -11,14 +11,15 @@ NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
 
 
 def _package_laws() -> list[str]:
-    return sorted(p.name for p in [*(ROOT / "derive" / "catalogue").glob("*.toml"), *(ROOT / "generated" / "laws").glob("*.py")])
+    return sorted(p.name for p in [*(ROOT / "derive" / "law" / "catalogue").glob("*.toml"), *(ROOT / "generated" / "laws").glob("*.py")])
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
 def test_notebook_runs(path, monkeypatch, tmp_path):
     assert NOTEBOOKS
     monkeypatch.setenv("FRICGEN_NOTEBOOK_SMALL", "1")
-    monkeypatch.setenv("FRICGEN_LAWS", str(tmp_path))  # define_a_friction_law saves its law there (a user's law folder)
+    monkeypatch.delenv("FRICGEN_LAWS", raising=False)  # a law of one's own folder is handed over as an object
+    monkeypatch.setenv("FRICGEN_NOTEBOOK_LAWS", str(tmp_path))  # define_a_friction_law saves its law there (a user's law folder)
     notebook = nbformat.read(path, as_version=4)
     assert all(not cell.get("outputs") for cell in notebook.cells if cell.cell_type == "code"), "store notebooks without outputs"
     before = _package_laws()

@@ -19,6 +19,7 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass, field
 
+from ...kernels import LawKernels
 from ...langevin.analysis import Sampler, block_estimate, kl_divergence
 from ...langevin.config import LangevinConfig, Law, Thermostat
 from ...langevin.simulation import Simulation
@@ -132,15 +133,18 @@ class CheckResult:
         return asdict(self)
 
 
-def passive_run(check: PassiveCheck, observers: Sequence[Callable[[Simulation], None]] = ()) -> tuple[CheckResult, Sampler]:
+def passive_run(
+    check: PassiveCheck, observers: Sequence[Callable[[Simulation], None]] = (), law: LawKernels | None = None
+) -> tuple[CheckResult, Sampler]:
     """Run the passive check; return its result and the sampler (velocity and spin samples).
 
-    ``observers`` are called after every chunk of the equilibration and of the sampling."""
+    ``observers`` are called after every chunk of the equilibration and of the sampling; ``law``: the
+    law's kernels (:func:`fricgen.load_law`), by default looked up by ``check.law.name``."""
     start = time.perf_counter()
     kT, dt, dim = check.thermostat.kT, check.thermostat.dt, check.dim
     particles = Particles.spheres(check.size, RADIUS, MASS)
     state = lattice_state(particles, dim, check.fraction, kT=kT, seed=check.seed)
-    simulation = Simulation(check.langevin(), particles, state)
+    simulation = Simulation(check.langevin(), particles, state, law)
     steps = check.steps
     every = check.every or max(1, int(round(0.05 / dt)))
     simulation.run(steps // 10, every=steps // 10 or 1, observers=observers)  # equilibration from the lattice start
@@ -175,13 +179,13 @@ def passive_run(check: PassiveCheck, observers: Sequence[Callable[[Simulation], 
     return result, sampler
 
 
-def thermostat_check(law: str, **options) -> CheckResult:
+def thermostat_check(law: str | LawKernels, **options) -> CheckResult:
     """Run the passive check: a fluid of frictional spheres at kT, started on a lattice; the
     temperatures of translation and rotation must be kT within ``z_limit`` standard errors and the
     KL divergences (F-41) below ``kl_limit``.
 
     Args:
-        law: the law's name.
+        law: the law's name, or its kernels (:func:`fricgen.load_law`, for a law of one's own folder).
         **options: flat options as in :func:`passive_check`: ``dim``, ``n``, ``phi``, ``total_time``
             (in t0), ``seed``, ``calculus``, ``contact_noise``, ``contact_scheme``, ``parameters``,
             ``kT``, ``dt``, ``solvent``, ...
@@ -190,4 +194,6 @@ def thermostat_check(law: str, **options) -> CheckResult:
         T_trans, T_rot (in kT) with their block errors, the KL divergences, the verdict ``passed``
         and, for the pairwise contact step, its rejection rate.
     """
+    if isinstance(law, LawKernels):
+        return passive_run(passive_check(law.name, **options), law=law)[0]
     return passive_run(passive_check(law, **options))[0]
