@@ -140,6 +140,19 @@ def test_every_command_and_flag_in_the_docs_exists():
     assert checked >= 40, checked
 
 
+def test_every_path_of_the_repository_named_in_the_docs_exists():
+    """`derive/law/expressions.py`, `tests/lammps`, ... in the docs name files and folders that exist
+    (placeholders such as `generated/laws/<law>.py` or `generated/lammps/LAW` are left out)."""
+    named = 0
+    for path in [*PAGES, ROOT / "README.md"]:
+        for name in re.findall(r"`((?:derive|fricgen|generated|tests|benchmarks|notebooks|docs)/[\w./-]*)`", path.read_text()):
+            if any(part.isupper() for part in name.split("/")) or name.startswith("docs/_build"):  # generated/lammps/LAW, build output
+                continue
+            named += 1
+            assert (ROOT / name.rstrip("/")).exists(), f"{path.relative_to(ROOT)} names {name}, which does not exist"
+    assert named >= 30, named
+
+
 def test_readme_keeps_the_two_commands_that_ci_runs():
     readme = (ROOT / "README.md").read_text()
     ci = (ROOT / ".ci" / "run").read_text()
