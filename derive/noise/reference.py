@@ -27,8 +27,9 @@ from .derivation import NoiseModel, branches, sign_changes, switches
 
 #: Cases (kT, mu, w, r, factor on every parameter default).
 KERNEL_CASES = ((1.0, 7.0, 1.0, 1.0, 1.0), (2.0, 7.0, 60.0, 1.05, 1.0), (0.3, 2.0, 0.05, 1.0, 0.5), (2.5, 3.5, 5.0, 1.0, 3.0))
-#: Speeds in units of sqrt(a), a = nu kT (sqrt(mu kT) when nu = 0).
-SPEEDS = (1e-6, 1e-3, 0.1, 0.5, 1.0, 2.0, 5.0, 10.0, 30.0, 100.0, 300.0, 1000.0)
+#: Speeds in units of sqrt(a), a = nu kT (sqrt(mu kT) when nu = 0); not only powers of two and their simple
+#: fractions, which are ends of the pieces of noise tables (fricgen.derive.backends.tables), where a table is exact.
+SPEEDS = (1e-6, 1e-3, 0.1, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0, 3.5, 5.0, 7.0, 10.0, 20.0, 30.0, 60.0, 100.0, 300.0, 1000.0)
 #: Working precision (digits) of the reference values.
 DIGITS = 30
 #: Working precision of the quadrature of (F-22) (about 1e-20; the kernels' own error is ~1e-13).

@@ -37,6 +37,27 @@ class ContactTally(NamedTuple):
         return self.rejection_sum / self.proposals if self.proposals else None
 
 
+#: Most contact mobilities that a simulation tabulates an integral-form D for (one table each).
+TABLES = 4
+
+
+def pair_mobilities(particles: Particles, limit: int = TABLES) -> np.ndarray:
+    """The contact mobilities mu = 1/m_i + 1/m_k + R_i^2/I_i + R_k^2/I_k of pairs (i, k) of the most common kinds of
+    particle (mass, radius, inertia), bit for bit as fricgen.langevin.contact_step.find_contacts computes them, at most
+    ``limit``: the law module's tabulate_<c> builds a noise table for each (fricgen.derive.backends.tables); a pair of
+    other kinds is evaluated by quadrature."""
+    kinds, counts = np.unique(np.stack([particles.inv_mass, particles.radius, particles.inv_inertia], axis=1), axis=0, return_counts=True)
+    kinds = kinds[np.argsort(-counts, kind="stable")]
+    found: list[float] = []
+    for top in range(len(kinds)):
+        for i, k in ((j, top) for j in range(top + 1)):
+            for (mi, ri, ii), (mk, rk, ik) in ((kinds[i], kinds[k]), (kinds[k], kinds[i])):  # (i, k) and (k, i): sums in another order
+                mu = float(mi + mk + ri**2 * ii + rk**2 * ik)
+                if mu > 0.0 and mu not in found and len(found) < limit:
+                    found.append(mu)
+    return np.array(found)
+
+
 class Simulation:
     """Runs a configuration on a state (in place); ``run`` calls observers between chunks.
 
@@ -62,7 +83,11 @@ class Simulation:
         fixed = {"sigma": 1.0, "epsilon": config.epsilon}  # the engine scales distances by sigma_ik = R_i + R_k
         params = dict(law.parameters) | {name: value for name, value in fixed.items() if name in self.kernels.parameter_names}
         self.potential = load_potential(config.potential)
-        self.couplings = Couplings(np.array([config.epsilon, 1.0]), self.kernels.parameters(**params), self.kernels.has_weight)
+        values = self.kernels.parameters(**params)
+        tabulate = getattr(self.kernels.module, f"tabulate_{law.calculus}", None)  # noise tables of an integral-form D
+        if tabulate is not None:
+            values = tabulate(pair_mobilities(particles), config.thermostat.kT, values)
+        self.couplings = Couplings(np.array([config.epsilon, 1.0]), values, self.kernels.has_weight)
         self.neighbor_list, self.neighbor_builds = NeighborList.unbuilt(), 0  # the list is kept while valid
         self.tally = ContactTally(0, 0, 0.0)
         self.thread_choice = ThreadChoice(numba.get_num_threads())

@@ -14,7 +14,7 @@ limit u -> 0+ where finite (viscous laws) and 0 otherwise (static friction: no f
 import math
 import numba
 
-from ..special import erfcx  # special.py 410232c96b3d5b78
+from ..special import erfcx  # special.py 87ff0fa15425ea4c
 
 LAW = 'coulomb'
 SOURCE_HASH = '72c6901bf2fb38e73b37f255af5db496594bcd5ab7af90c94bb6567ec25dde72'

@@ -14,7 +14,7 @@ limit u -> 0+ where finite (viscous laws) and 0 otherwise (static friction: no f
 import math
 import numba
 
-from ..special import erfcx, expm1_given_exp  # special.py 410232c96b3d5b78
+from ..special import erfcx, expm1_given_exp  # special.py 87ff0fa15425ea4c
 
 LAW = 'coulomb_newton'
 SOURCE_HASH = '50e8ad3928d3c06ad08ebe539cc907acea0f9d3e9ad94eeeb2febb4c6cdb1b1d'

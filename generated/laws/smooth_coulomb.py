@@ -13,6 +13,9 @@ limit u -> 0+ where finite (viscous laws) and 0 otherwise (static friction: no f
 """
 import math
 import numba
+import numpy
+
+from ..special import TABLE_ROW, TABLE_ZONES, table_block, table_join, table_points, table_value, table_zone  # special.py 87ff0fa15425ea4c
 
 LAW = 'smooth_coulomb'
 SOURCE_HASH = 'a68bd35cccf52750ee15781d4daa13158f9843fe2b623afbfaa4f54bdbdae406'
@@ -90,12 +93,60 @@ def _gaussian_tail(u, a, w, r, params):
         hi = 2.0 * hi
 
 
+@numba.njit("float64(float64, float64, float64[::1])", cache=True, error_model="numpy", inline="always")
+def _factor(w, r, params):
+    """h(w, r) = kappa_f*w: f = h g(u), so D = h D_g(u) and the noise tables hold D_g."""
+    kappa_f = params[0]
+    return kappa_f*w
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _noise_table(a, params):
+    """The noise table of D_g(u) = D(u) / _factor(w, r, params) for a = kT nu (layout: special.table_value):
+    zone by zone, the fewest equal pieces (1, 2, 4, ... 256) whose polynomials pass the checks against
+    _gaussian_tail at relative 1e-11 (special.table_zone); a zone that needs more keeps the quadrature."""
+    scale = _factor(1.0, 1.0, params)
+    root = math.sqrt(a)
+    zones = []
+    for k in range(TABLE_ZONES):
+        rows = numpy.empty((0, TABLE_ROW))
+        pieces = 1
+        while scale > 0.0 and scale < math.inf and pieces <= 256:
+            xs = table_points(k, pieces)
+            values = numpy.empty(xs.size)
+            for i in range(xs.size):
+                values[i] = _gaussian_tail(root * xs[i], a, 1.0, 1.0, params) / scale
+            rows = table_zone(k, pieces, values, 1e-11)
+            if rows.shape[0] > 0:
+                break
+            pieces *= 2
+        zones.append(rows)
+    return table_block(a, params, zones)
+
+
 @numba.njit("float64(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy", inline="always")
 def noise_amplitude_ito(u, w, r, mu, kT, params):
     """D(u) = (1/a) int_u^oo f(s) exp(-(s**2 - u**2)/(2*a)) ds (F-22), a = kT nu = kT*mu (ito calculus),
     f(s) = kappa_f*w*tanh(s/u0): Gauss-Legendre quadrature on geometric panels (_gaussian_tail).
-    No closed form: f = kappa_f*w*tanh(u/u0) is not a sum of polynomials in u times exp(c u)."""
-    return _gaussian_tail(u, kT*mu, w, r, params)
+    No closed form: f = kappa_f*w*tanh(u/u0) is not a sum of polynomials in u times exp(c u).
+    From the noise table of tabulate_ito where params carries one for a and the parameters."""
+    a = kT*mu
+    tabled = table_value(u, a, params, 4)
+    if tabled >= 0.0:
+        return _factor(w, r, params) * tabled
+    return _gaussian_tail(u, a, w, r, params)
+
+
+@numba.njit("float64[::1](float64[::1], float64, float64[::1])", cache=True, error_model="numpy")
+def tabulate_ito(mobilities, kT, params):
+    """params[:4] followed by the noise tables of the ito calculus, a = kT nu = kT*mu, one for each contact
+    mobility mu in mobilities: noise_amplitude_ito uses a table where its a and params[:4] are the
+    table's, the quadrature elsewhere (fricgen.derive.backends.tables)."""
+    own = params[:4].copy()
+    blocks = []
+    for mu in mobilities:
+        blocks.append(_noise_table(kT*mu, own))
+    return table_join(own, blocks)
 
 
 @numba.njit("float64(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy", inline="always")
@@ -114,8 +165,25 @@ def contact_ito(u, w, r, mu, kT, params):
 def noise_amplitude_stratonovich(u, w, r, mu, kT, params):
     """D(u) = (1/a) int_u^oo f(s) exp(-(s**2 - u**2)/(2*a)) ds (F-22), a = kT nu = kT*mu/2 (stratonovich calculus),
     f(s) = kappa_f*w*tanh(s/u0): Gauss-Legendre quadrature on geometric panels (_gaussian_tail).
-    No closed form: f = kappa_f*w*tanh(u/u0) is not a sum of polynomials in u times exp(c u)."""
-    return _gaussian_tail(u, (1/2)*kT*mu, w, r, params)
+    No closed form: f = kappa_f*w*tanh(u/u0) is not a sum of polynomials in u times exp(c u).
+    From the noise table of tabulate_stratonovich where params carries one for a and the parameters."""
+    a = (1/2)*kT*mu
+    tabled = table_value(u, a, params, 4)
+    if tabled >= 0.0:
+        return _factor(w, r, params) * tabled
+    return _gaussian_tail(u, a, w, r, params)
+
+
+@numba.njit("float64[::1](float64[::1], float64, float64[::1])", cache=True, error_model="numpy")
+def tabulate_stratonovich(mobilities, kT, params):
+    """params[:4] followed by the noise tables of the stratonovich calculus, a = kT nu = kT*mu/2, one for each contact
+    mobility mu in mobilities: noise_amplitude_stratonovich uses a table where its a and params[:4] are the
+    table's, the quadrature elsewhere (fricgen.derive.backends.tables)."""
+    own = params[:4].copy()
+    blocks = []
+    for mu in mobilities:
+        blocks.append(_noise_table((1/2)*kT*mu, own))
+    return table_join(own, blocks)
 
 
 @numba.njit("float64(float64, float64, float64, float64, float64, float64[::1])", cache=True, error_model="numpy", inline="always")

@@ -14,7 +14,7 @@ limit u -> 0+ where finite (viscous laws) and 0 otherwise (static friction: no f
 import math
 import numba
 
-from ..special import erfcx  # special.py 410232c96b3d5b78
+from ..special import erfcx  # special.py 87ff0fa15425ea4c
 
 LAW = 'stribeck'
 SOURCE_HASH = 'ac68a2d097b312d272ecfa50470574a1c17ae0cd33c041b27aa30c9b39dbdff6'

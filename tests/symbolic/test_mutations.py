@@ -144,6 +144,16 @@ def test_a_coarse_quadrature_is_caught_by_kernel_accuracy(laws, monkeypatch):
     assert float(report.details["kernel_max_rel_error"]) > 1e-8
 
 
+def test_a_coarse_noise_table_is_caught_by_kernel_accuracy(laws, monkeypatch):
+    """Tables whose pieces need only 1e-2 (their two highest Chebyshev coefficients and their checks against the
+    quadrature): the polynomials stay good to about 1e-9, which the reference values at speeds off the pieces' ends catch."""
+    monkeypatch.setattr(modules, "TABLE_TOLERANCE", 1e-2)
+    report = verify(derive_noise(laws["smooth_coulomb"], "stratonovich"))
+    assert failed(report) == {"kernel_accuracy"}, report.checks
+    assert "(noise table)" in report.details["kernel_accuracy"]
+    assert float(report.details["kernel_max_rel_error"]) > 1e-10
+
+
 def test_a_wrong_erfcx_is_caught_by_kernel_accuracy(laws, monkeypatch, tmp_path):
     """The convergent of generated/special.py's erfcx cut to its lowest 3 powers of x^2: wrong for large u."""
     source = special_functions.SPECIAL_SOURCE.read_text()

@@ -23,6 +23,8 @@ from ...law.symbols import s, u
 from ...noise.derivation import NoiseModel, switches
 from ..printing import branch_cse, compact, cut, equation, fold_constants, stabilize, zero_speed_limit, zero_speed_note
 from ..special_functions import special_namespace
+from ..tables import table_factor
+from .table_code import table_builder, tabled_amplitude
 
 INDENT = "  "
 #: C++ parameter lists of the kernel signatures (the Python kernels' argument names, as in the Numba backend's SIGNATURES).
@@ -30,6 +32,7 @@ SIGNATURES = {
     "r, params": "double r, const double *params",
     "u, w, r, params": "double u, double w, double r, const double *params",
     "u, w, r, mu, kT, params": "double u, double w, double r, double mu, double kT, const double *params",
+    "w, r, params": "double w, double r, const double *params",
 }
 
 
@@ -171,13 +174,16 @@ def law_kernels(law: FrictionLaw, model: NoiseModel, order: int) -> str:
         doc = f"A branch condition of f changes where this changes sign: {cut(str(compact(g)))} (see next_cut)."
         parts.append(kernel(f"switch_{k}", "u, w, r, params", g, doc, params))
     parts.append(tail_kernels(order, len(cuts)))
+    if (factor := table_factor(law, model)) is not None:  # noise tables (fricgen.derive.backends.tables): f = h g(u), D = h D_g(u)
+        parts += [kernel("factor", "w, r, params", factor, f"h(w, r) = {cut(str(compact(factor)))}", params), table_builder()]
     doc = (
         f"D(u) = (1/a) int_u^oo f(s) exp(-(s**2 - u**2)/(2*a)) ds (F-22), a = kT nu = {a} ({c} calculus),\n"
         f"f(s) = {cut(str(compact(law.friction.subs(u, s))))}: Gauss-Legendre quadrature on geometric panels (gaussian_tail)."
         + (f"\nNo closed form: {cut(model.reason)}." if model.reason else "")
+        + ("\nFrom the noise table for a and the parameters (noise_table_for) where there is one." if factor is not None else "")
     )
     scale = CxxKernelPrinter().doprint(model.variance_scale)
-    body = f"{{\n{INDENT}return gaussian_tail(u, {scale}, w, r, params);\n}}\n"
+    body = tabled_amplitude(scale) if factor is not None else f"{{\n{INDENT}return gaussian_tail(u, {scale}, w, r, params);\n}}\n"
     parts.append(f"{comment(doc)}inline double noise_amplitude_{c}({SIGNATURES[args]})\n{body}")
     return "\n".join(parts)
 

@@ -29,7 +29,10 @@ SIGNATURES = {
     "u, w, r, params": "float64(float64, float64, float64, float64[::1])",
     "u, w, r, mu, kT, params": "float64(float64, float64, float64, float64, float64, float64[::1])",
     "xs, params, out": "void(float64[::1], float64[::1], float64[::1])",
+    "w, r, params": "float64(float64, float64, float64[::1])",
 }
+#: tabulate_<c>(mobilities, kT, params) -> params followed by the noise tables (fricgen.derive.backends.tables).
+TABULATE_SIGNATURE = "float64[::1](float64[::1], float64, float64[::1])"
 CONTACT_SIGNATURE = "UniTuple(float64, 2)(float64, float64, float64, float64, float64, float64[::1])"
 INDENT = "    "
 
@@ -186,6 +189,54 @@ def tail_kernels(order: int, count: int) -> str:
         return TAIL_KERNEL.format(decorator=DECORATOR, order=order).lstrip("\n")
     cuts = "\n".join(_CUT.format(k=k) for k in range(count))
     return SPLIT_TAIL_KERNEL.format(decorator=DECORATOR, order=order, cuts=cuts).lstrip("\n")
+
+
+# --- the noise tables of an integral-form D (fricgen.derive.backends.tables) ------------------------------
+
+TABLE_KERNEL = '''
+@numba.njit(cache=True, error_model="numpy")
+def _noise_table(a, params):
+    """The noise table of D_g(u) = D(u) / _factor(w, r, params) for a = kT nu (layout: special.table_value):
+    zone by zone, the fewest equal pieces (1, 2, 4, ... {pieces}) whose polynomials pass the checks against
+    _gaussian_tail at relative {tolerance!r} (special.table_zone); a zone that needs more keeps the quadrature."""
+    scale = _factor(1.0, 1.0, params)
+    root = math.sqrt(a)
+    zones = []
+    for k in range(TABLE_ZONES):
+        rows = numpy.empty((0, TABLE_ROW))
+        pieces = 1
+        while scale > 0.0 and scale < math.inf and pieces <= {pieces}:
+            xs = table_points(k, pieces)
+            values = numpy.empty(xs.size)
+            for i in range(xs.size):
+                values[i] = _gaussian_tail(root * xs[i], a, 1.0, 1.0, params) / scale
+            rows = table_zone(k, pieces, values, {tolerance!r})
+            if rows.shape[0] > 0:
+                break
+            pieces *= 2
+        zones.append(rows)
+    return table_block(a, params, zones)
+'''
+
+TABULATE_KERNEL = '''
+@numba.njit("{signature}", cache=True, error_model="numpy")
+def tabulate_{calculus}(mobilities, kT, params):
+    """params[:{n}] followed by the noise tables of the {calculus} calculus, a = kT nu = {a}, one for each contact
+    mobility mu in mobilities: noise_amplitude_{calculus} uses a table where its a and params[:{n}] are the
+    table's, the quadrature elsewhere (fricgen.derive.backends.tables)."""
+    own = params[:{n}].copy()
+    blocks = []
+    for mu in mobilities:
+        blocks.append(_noise_table({scale}, own))
+    return table_join(own, blocks)
+'''
+
+TABLED_AMPLITUDE = """    a = {scale}
+    tabled = table_value(u, a, params, {n})
+    if tabled >= 0.0:
+        return _factor(w, r, params) * tabled
+    return _gaussian_tail(u, a, w, r, params)
+"""
 
 
 FIELD_KERNEL = '''

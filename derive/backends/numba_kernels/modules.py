@@ -32,10 +32,15 @@ from ..printing import (
     zero_speed_note,
 )
 from ..special_functions import SPECIAL_SOURCE
+from ..tables import TABLE_PIECES, TABLE_TOLERANCE, table_factor
 from .kernel_code import (
     CONTACT_SIGNATURE,
     FIELD_KERNEL,
     INDENT,
+    TABLE_KERNEL,
+    TABLED_AMPLITUDE,
+    TABULATE_KERNEL,
+    TABULATE_SIGNATURE,
     body,
     quote_doc,
     ranges_literal,
@@ -125,6 +130,12 @@ def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, sou
             doc = f"A branch condition of f changes where this changes sign: {cut(str(compact(g)))} (see _next_cut)."
             functions.append(_kernel(f"_switch_{k}", "u, w, r, params", g, doc, params))
         functions.append(tail_kernels(QUADRATURE_ORDER, len(cuts)))
+    factors = {c: table_factor(law, m) for c, m in models.items()}
+    factor = next((h for h in factors.values() if h is not None), None)
+    if factor is not None:  # noise tables (fricgen.derive.backends.tables)
+        doc = f"h(w, r) = {cut(str(compact(factor)))}: f = h g(u), so D = h D_g(u) and the noise tables hold D_g."
+        functions.append(_kernel("_factor", "w, r, params", factor, doc, params))
+        functions.append(TABLE_KERNEL.format(pieces=TABLE_PIECES, tolerance=TABLE_TOLERANCE).lstrip("\n"))
     args = "u, w, r, mu, kT, params"
     for c, model in models.items():
         a = compact(model.variance_scale)
@@ -139,12 +150,18 @@ def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, sou
                 f"D(u) = (1/a) int_u^oo f(s) exp(-(s**2 - u**2)/(2*a)) ds (F-22), a = kT nu = {a} ({c} calculus),\n"
                 f"f(s) = {cut(str(compact(law.friction.subs(u, s))))}: Gauss-Legendre quadrature on geometric panels (_gaussian_tail)."
                 + (f"\nNo closed form: {cut(model.reason)}." if model.reason else "")
+                + (f"\nFrom the noise table of tabulate_{c} where params carries one for a and the parameters." * (factors[c] is not None))
             )
+            scale = KernelPrinter().doprint(model.variance_scale)
+            tabled = TABLED_AMPLITUDE.format(scale=scale, n=len(params)) if factors[c] is not None else ""
             functions.append(
                 f"{_decorator(args)}\ndef noise_amplitude_{c}({args}):\n"
                 f"{INDENT}{quote_doc(doc.replace(chr(10), chr(10) + INDENT))}\n"
-                f"{INDENT}return _gaussian_tail(u, {KernelPrinter().doprint(model.variance_scale)}, w, r, params)\n"
+                + (tabled or f"{INDENT}return _gaussian_tail(u, {scale}, w, r, params)\n")
             )
+            if tabled:
+                kernel = TABULATE_KERNEL.format(signature=TABULATE_SIGNATURE, calculus=c, n=len(params), a=a, scale=scale)
+                functions.append(kernel.lstrip("\n"))
         amplitude = short_formula(model.amplitude) if model.closed_form else None
         value = f" = sqrt({amplitude})" if amplitude else ""
         doc = f"sqrt(D(u)){value}, D = noise_amplitude_{c} ({c} calculus): the amplitude of the random contact force."
@@ -163,6 +180,9 @@ def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, sou
         )
     code = "".join("\n\n" + f for f in functions)
     special = [name for name in ("erfcx", "expm1_given_exp") if f"{name}(" in code]
+    if factor is not None:
+        special += ["TABLE_ROW", "TABLE_ZONES", "table_block", "table_join", "table_points", "table_value", "table_zone"]
+        parts[3] = "import numba\nimport numpy\n"
     if special:  # the hash: a new special.py rewrites this file, so Numba's cache (which tracks only its date) recompiles it
         parts.insert(4, f"\nfrom ..special import {', '.join(special)}  # special.py {_special_hash()[:16]}\n")
     return "".join(parts) + code

@@ -110,3 +110,185 @@ def expm1_given_exp(e, x):
     nothing (within 1 ulp), else expm1(x); a kernel that needs both exp(x) and expm1(x) pays one
     transcendental call for arguments below -ln 2."""
     return e - 1.0 if x < -0.6931471805599453 else math.expm1(x)
+
+
+# --- noise tables ----------------------------------------------------------------------------------
+# A law f = h(w, r) g(u) without a closed-form D tabulates D_g(u) = D(u) / h, the (F-22) integral of g,
+# for the a = kT nu of a simulation (a law module's tabulate_<c>, which evaluates its quadrature at the
+# points of table_points and hands the values to table_zone). Piecewise polynomials in x = u/sqrt(a): zone
+# 0 is [0, 2^-TABLE_LOW), zone k >= 1 the octave [2^(k-1-TABLE_LOW), 2^(k-TABLE_LOW)), up to x = 2^TABLE_HIGH;
+# each zone is cut into a power of two of equal pieces, as few as pass the checks; on a piece, the
+# interpolant at the TABLE_TERMS Chebyshev points in powers of t = (x - centre)/half-width (Estrin's
+# scheme, like erfcx). The tables follow the law's n parameters in params:
+#   params[n] = number of tables, then per table: its length, a, 1/sqrt(a), the n parameters it was built
+#   for, per zone (offset of its first row in the table or -1, pieces), rows (centre, 1/half, coefficients).
+# table_value returns -1.0 where no table applies (another a or other parameters, x beyond the zones, a
+# zone left untabulated): the kernel then integrates by quadrature.
+
+TABLE_TERMS = 12
+TABLE_ROW = TABLE_TERMS + 2
+TABLE_LOW, TABLE_HIGH = 10, 20
+TABLE_ZONES = 1 + TABLE_LOW + TABLE_HIGH
+_TABLE_BOTTOM, _TABLE_TOP = 2.0**-TABLE_LOW, 2.0**TABLE_HIGH
+#: Where each piece is checked against the quadrature, in t: both ends (the pieces join) and between the nodes.
+TABLE_CHECKS = numpy.array((-1.0, -0.5, 0.0, 0.5, 1.0))
+TABLE_POINTS = TABLE_TERMS + 5
+
+
+def _chebyshev_matrices():
+    """Chebyshev points cos(theta_i), theta_i = pi (i + 1/2)/TABLE_TERMS; the matrix from values there to
+    Chebyshev coefficients (a discrete cosine transform); and from those to powers of t (T_k's coefficients)."""
+    n = TABLE_TERMS
+    theta = [math.pi * (i + 0.5) / n for i in range(n)]
+    nodes = numpy.array([math.cos(x) for x in theta])
+    transform = numpy.array([[(1.0 if m == 0 else 2.0) / n * math.cos(m * x) for x in theta] for m in range(n)])
+    powers = numpy.zeros((n, n))  # row k: T_k in powers of t
+    powers[0, 0], powers[1, 1] = 1.0, 1.0
+    for k in range(2, n):
+        powers[k, 1:] = 2.0 * powers[k - 1, :-1]
+        powers[k] -= powers[k - 2]
+    return nodes, transform, numpy.ascontiguousarray(powers.T)
+
+
+TABLE_NODES, TABLE_TRANSFORM, TABLE_POWERS = _chebyshev_matrices()
+
+
+@numba.njit(inline="always", cache=True)
+def _estrin(c, o, t):
+    """sum_p c[o + p] t^p for p < TABLE_TERMS by Estrin's scheme."""
+    t2 = t * t
+    t4 = t2 * t2
+    low = (c[o] + c[o + 1] * t) + (c[o + 2] + c[o + 3] * t) * t2
+    middle = (c[o + 4] + c[o + 5] * t) + (c[o + 6] + c[o + 7] * t) * t2
+    high = (c[o + 8] + c[o + 9] * t) + (c[o + 10] + c[o + 11] * t) * t2
+    return low + (middle + high * t4) * t4
+
+
+@numba.njit(cache=True)
+def _zone(k):
+    """(lower end, width) of zone k in x."""
+    if k == 0:
+        return 0.0, _TABLE_BOTTOM
+    lower = 2.0 ** (k - 1 - TABLE_LOW)
+    return lower, lower
+
+
+@numba.njit(cache=True)
+def table_points(k, pieces):
+    """Where zone k cut into ``pieces`` needs D_g: per piece its TABLE_TERMS nodes, then its TABLE_CHECKS."""
+    lower, width = _zone(k)
+    half = 0.5 * width / pieces
+    xs = numpy.empty(pieces * TABLE_POINTS)
+    for j in range(pieces):
+        centre = lower + (2 * j + 1) * half
+        for i in range(TABLE_TERMS):
+            xs[j * TABLE_POINTS + i] = centre + half * TABLE_NODES[i]
+        for i in range(TABLE_CHECKS.size):
+            xs[j * TABLE_POINTS + TABLE_TERMS + i] = centre + half * TABLE_CHECKS[i]
+    return xs
+
+
+@numba.njit(cache=True)
+def table_zone(k, pieces, values, tolerance):
+    """The rows of zone k cut into ``pieces``, from D_g at table_points(k, pieces); no rows (shape (0, TABLE_ROW))
+    unless every piece passes: its two highest Chebyshev coefficients below ``tolerance`` times the lowest,
+    and its polynomial within ``tolerance`` (relative) of D_g at the checks. NaN or inf values fail."""
+    lower, width = _zone(k)
+    half = 0.5 * width / pieces
+    rows = numpy.empty((pieces, TABLE_ROW))
+    chebyshev = numpy.empty(TABLE_TERMS)
+    for j in range(pieces):
+        base = j * TABLE_POINTS
+        for m in range(TABLE_TERMS):
+            total = 0.0
+            for i in range(TABLE_TERMS):
+                total += TABLE_TRANSFORM[m, i] * values[base + i]
+            chebyshev[m] = total
+        if not abs(chebyshev[TABLE_TERMS - 2]) + abs(chebyshev[TABLE_TERMS - 1]) <= tolerance * abs(chebyshev[0]):
+            return numpy.empty((0, TABLE_ROW))
+        rows[j, 0], rows[j, 1] = lower + (2 * j + 1) * half, 1.0 / half
+        for p in range(TABLE_TERMS):
+            total = 0.0
+            for m in range(TABLE_TERMS):
+                total += TABLE_POWERS[p, m] * chebyshev[m]
+            rows[j, 2 + p] = total
+        for i in range(TABLE_CHECKS.size):
+            exact = values[base + TABLE_TERMS + i]
+            if not abs(_estrin(rows[j], 2, TABLE_CHECKS[i]) - exact) <= tolerance * abs(exact):
+                return numpy.empty((0, TABLE_ROW))
+    return rows
+
+
+@numba.njit(cache=True)
+def table_block(a, params, zones):
+    """One table (the layout above) for a and the parameters ``params`` from the rows of each zone."""
+    n = params.size
+    count = 0
+    for rows in zones:
+        count += rows.shape[0]
+    head = 3 + n + 2 * TABLE_ZONES
+    block = numpy.empty(head + TABLE_ROW * count)
+    block[0], block[1], block[2] = block.size, a, 1.0 / math.sqrt(a)
+    block[3 : 3 + n] = params
+    offset = head
+    for k in range(TABLE_ZONES):
+        rows = zones[k]
+        block[3 + n + 2 * k] = offset if rows.shape[0] > 0 else -1.0
+        block[4 + n + 2 * k] = rows.shape[0]
+        for j in range(rows.shape[0]):
+            block[offset : offset + TABLE_ROW] = rows[j]
+            offset += TABLE_ROW
+    return block
+
+
+@numba.njit(cache=True)
+def table_join(params, blocks):
+    """params followed by the number of tables and the tables."""
+    size = params.size + 1
+    for block in blocks:
+        size += block.size
+    joined = numpy.empty(size)
+    joined[: params.size] = params
+    joined[params.size] = len(blocks)
+    offset = params.size + 1
+    for block in blocks:
+        joined[offset : offset + block.size] = block
+        offset += block.size
+    return joined
+
+
+@numba.njit(inline="always", cache=True)
+def table_value(u, a, params, n):
+    """D_g(u) from the table for a and params[:n] among those after params[:n]; -1.0 where none applies."""
+    if params.size <= n:
+        return -1.0
+    o = n + 1
+    for _ in range(int(params[n])):
+        if params[o + 1] == a:
+            same = True
+            for i in range(n):
+                same = same and params[o + 3 + i] == params[i]
+            if same:
+                return _table_lookup(u, params, o, n)
+        o += int(params[o])
+    return -1.0
+
+
+@numba.njit(inline="always", cache=True)
+def _table_lookup(u, params, o, n):
+    """D_g(u) from the table at params[o:]; -1.0 beyond its zones or in a zone it leaves to the quadrature."""
+    x = u * params[o + 2]
+    if not (x >= 0.0 and x < _TABLE_TOP):  # NaN too
+        return -1.0
+    if x < _TABLE_BOTTOM:
+        k, s = 0, x * 2.0**TABLE_LOW
+    else:
+        m, e = math.frexp(x)
+        k, s = e + TABLE_LOW, 2.0 * m - 1.0
+    zone = o + 3 + n + 2 * k
+    first, pieces = params[zone], params[zone + 1]
+    if first < 0.0:
+        return -1.0
+    j = min(int(s * pieces), int(pieces) - 1)
+    row = o + int(first) + TABLE_ROW * j
+    return _estrin(params, row + 2, (x - params[row]) * params[row + 1])

@@ -209,12 +209,204 @@ inline double gaussian_tail(double u, double a, double w, double r, const double
   }
 }
 
+// h(w, r) = kappa_f*w
+inline double factor(double w, double r, const double *params)
+{
+  const double kappa_f = params[0];
+  (void) r;
+  return kappa_f*w;
+}
+
+// --- noise tables (fricgen.derive.backends.tables; fricgen.generated.special's table functions, step for step) ---
+// Piecewise polynomials of D_g(u) = D(u) / factor(w, r) in x = u/sqrt(a): zone 0 is [0, 2^-TABLE_LOW), zone k
+// the octave [2^(k-1-TABLE_LOW), 2^(k-TABLE_LOW)); a table is: its length, a, 1/sqrt(a), the NPARAMS
+// parameters it was built for, per zone (offset of its first row or -1, pieces), rows (centre, 1/half-width,
+// 12 coefficients of powers of t = (x - centre)/half-width).
+const int TABLE_TERMS = 12, TABLE_ROW = 12 + 2, TABLE_LOW = 10, TABLE_HIGH = 20;
+const int TABLE_ZONES = 1 + TABLE_LOW + TABLE_HIGH, TABLE_NCHECKS = 5, TABLE_POINTS = TABLE_TERMS + TABLE_NCHECKS;
+const double TABLE_CHECKS[TABLE_NCHECKS] = {-1.0, -0.5, 0.0, 0.5, 1.0};
+const double TABLE_NODES[TABLE_TERMS] = {0.9914448613738104, 0.9238795325112867, 0.7933533402912352, 0.6087614290087207, 0.38268343236508984, 0.1305261922200517, -0.1305261922200516, -0.3826834323650895, -0.6087614290087207, -0.793353340291235, -0.9238795325112867, -0.9914448613738104};
+const double TABLE_TRANSFORM[TABLE_TERMS][TABLE_TERMS] = {
+  {0.08333333333333333, 0.08333333333333333, 0.08333333333333333, 0.08333333333333333, 0.08333333333333333, 0.08333333333333333, 0.08333333333333333, 0.08333333333333333, 0.08333333333333333, 0.08333333333333333, 0.08333333333333333, 0.08333333333333333},
+  {0.1652408102289684, 0.15397992208521444, 0.13222555671520586, 0.10146023816812011, 0.0637805720608483, 0.02175436537000862, -0.021754365370008598, -0.06378057206084825, -0.10146023816812011, -0.13222555671520583, -0.15397992208521444, -0.1652408102289684},
+  {0.1609876377148447, 0.11785113019775792, 0.04313650751708679, -0.04313650751708677, -0.1178511301977579, -0.1609876377148447, -0.1609876377148447, -0.11785113019775798, -0.04313650751708677, 0.04313650751708671, 0.11785113019775789, 0.16098763771484467},
+  {0.15397992208521444, 0.0637805720608483, -0.06378057206084828, -0.15397992208521444, -0.15397992208521447, -0.06378057206084839, 0.06378057206084833, 0.1539799220852144, 0.15397992208521444, 0.0637805720608484, -0.0637805720608483, -0.15397992208521438},
+  {0.14433756729740643, 1.020538999289461e-17, -0.14433756729740643, -0.14433756729740646, -3.0616169978683824e-17, 0.14433756729740638, 0.14433756729740643, 1.9905668658116058e-16, -0.14433756729740646, -0.14433756729740652, -7.143772995026227e-17, 0.1443375672974063},
+  {0.13222555671520586, -0.06378057206084828, -0.1652408102289684, -0.021754365370008605, 0.1539799220852144, 0.10146023816812016, -0.10146023816812008, -0.15397992208521455, 0.02175436537000865, 0.16524081022896836, 0.06378057206084844, -0.13222555671520558},
+  {0.11785113019775792, -0.1178511301977579, -0.11785113019775795, 0.11785113019775789, 0.11785113019775795, -0.11785113019775778, -0.11785113019775785, 0.11785113019775775, 0.11785113019775786, -0.11785113019775774, -0.11785113019775789, 0.11785113019775773},
+  {0.10146023816812011, -0.15397992208521444, -0.021754365370008605, 0.16524081022896842, -0.0637805720608483, -0.13222555671520586, 0.1322255567152058, 0.06378057206084872, -0.16524081022896842, 0.021754365370008313, 0.15397992208521458, -0.10146023816811978},
+  {0.08333333333333334, -0.16666666666666666, 0.08333333333333334, 0.08333333333333343, -0.16666666666666666, 0.08333333333333318, 0.08333333333333331, -0.16666666666666666, 0.0833333333333334, 0.0833333333333336, -0.16666666666666666, 0.08333333333333284},
+  {0.0637805720608483, -0.15397992208521447, 0.15397992208521447, -0.0637805720608483, -0.06378057206084842, 0.15397992208521455, -0.1539799220852145, 0.06378057206084771, 0.06378057206084793, -0.1539799220852146, 0.15397992208521447, -0.06378057206084765},
+  {0.04313650751708682, -0.11785113019775795, 0.1609876377148447, -0.1609876377148447, 0.11785113019775775, -0.04313650751708665, -0.04313650751708685, 0.11785113019775831, -0.16098763771484467, 0.1609876377148446, -0.11785113019775768, 0.04313650751708598},
+  {0.02175436537000862, -0.06378057206084839, 0.10146023816812005, -0.13222555671520586, 0.15397992208521444, -0.16524081022896842, 0.16524081022896836, -0.15397992208521427, 0.13222555671520575, -0.10146023816811975, 0.06378057206084818, -0.021754365370008216}
+};
+const double TABLE_POWERS[TABLE_TERMS][TABLE_TERMS] = {
+  {1.0, 0.0, -1.0, 0.0, 1.0, 0.0, -1.0, 0.0, 1.0, 0.0, -1.0, 0.0},
+  {0.0, 1.0, 0.0, -3.0, 0.0, 5.0, 0.0, -7.0, 0.0, 9.0, 0.0, -11.0},
+  {0.0, 0.0, 2.0, 0.0, -8.0, 0.0, 18.0, 0.0, -32.0, 0.0, 50.0, 0.0},
+  {0.0, 0.0, 0.0, 4.0, 0.0, -20.0, 0.0, 56.0, 0.0, -120.0, 0.0, 220.0},
+  {0.0, 0.0, 0.0, 0.0, 8.0, 0.0, -48.0, 0.0, 160.0, 0.0, -400.0, 0.0},
+  {0.0, 0.0, 0.0, 0.0, 0.0, 16.0, 0.0, -112.0, 0.0, 432.0, 0.0, -1232.0},
+  {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 32.0, 0.0, -256.0, 0.0, 1120.0, 0.0},
+  {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 64.0, 0.0, -576.0, 0.0, 2816.0},
+  {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 128.0, 0.0, -1280.0, 0.0},
+  {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 256.0, 0.0, -2816.0},
+  {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 512.0, 0.0},
+  {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1024.0}
+};
+
+inline double table_estrin(const double *c, double t)
+{
+  const double t2 = t * t, t4 = t2 * t2;
+  const double low = (c[0] + c[1] * t) + (c[2] + c[3] * t) * t2;
+  const double middle = (c[4] + c[5] * t) + (c[6] + c[7] * t) * t2;
+  const double high = (c[8] + c[9] * t) + (c[10] + c[11] * t) * t2;
+  return low + (middle + high * t4) * t4;
+}
+
+inline void table_zone_bounds(int k, double &lower, double &width)
+{
+  if (k == 0) {
+    lower = 0.0;
+    width = std::ldexp(1.0, -TABLE_LOW);
+  } else {
+    lower = width = std::ldexp(1.0, k - 1 - TABLE_LOW);
+  }
+}
+
+// Where zone k cut into pieces needs D_g: per piece its nodes, then its checks (special.table_points).
+inline std::vector<double> table_points(int k, int pieces)
+{
+  double lower, width;
+  table_zone_bounds(k, lower, width);
+  const double half = 0.5 * width / pieces;
+  std::vector<double> xs(static_cast<size_t>(pieces) * TABLE_POINTS);
+  for (int j = 0; j < pieces; ++j) {
+    const double centre = lower + (2 * j + 1) * half;
+    for (int i = 0; i < TABLE_TERMS; ++i) xs[j * TABLE_POINTS + i] = centre + half * TABLE_NODES[i];
+    for (int i = 0; i < TABLE_NCHECKS; ++i) xs[j * TABLE_POINTS + TABLE_TERMS + i] = centre + half * TABLE_CHECKS[i];
+  }
+  return xs;
+}
+
+// The rows of zone k cut into pieces, or none unless every piece passes the checks (special.table_zone).
+inline std::vector<double> table_zone(int k, int pieces, const std::vector<double> &values, double tolerance)
+{
+  double lower, width;
+  table_zone_bounds(k, lower, width);
+  const double half = 0.5 * width / pieces;
+  std::vector<double> rows(static_cast<size_t>(pieces) * TABLE_ROW);
+  double chebyshev[TABLE_TERMS];
+  for (int j = 0; j < pieces; ++j) {
+    const int base = j * TABLE_POINTS;
+    for (int m = 0; m < TABLE_TERMS; ++m) {
+      double total = 0.0;
+      for (int i = 0; i < TABLE_TERMS; ++i) total += TABLE_TRANSFORM[m][i] * values[base + i];
+      chebyshev[m] = total;
+    }
+    if (!(std::fabs(chebyshev[TABLE_TERMS - 2]) + std::fabs(chebyshev[TABLE_TERMS - 1]) <= tolerance * std::fabs(chebyshev[0])))
+      return std::vector<double>();
+    double *row = &rows[static_cast<size_t>(j) * TABLE_ROW];
+    row[0] = lower + (2 * j + 1) * half;
+    row[1] = 1.0 / half;
+    for (int p = 0; p < TABLE_TERMS; ++p) {
+      double total = 0.0;
+      for (int m = 0; m < TABLE_TERMS; ++m) total += TABLE_POWERS[p][m] * chebyshev[m];
+      row[2 + p] = total;
+    }
+    for (int i = 0; i < TABLE_NCHECKS; ++i) {
+      const double exact = values[base + TABLE_TERMS + i];
+      if (!(std::fabs(table_estrin(row + 2, TABLE_CHECKS[i]) - exact) <= tolerance * std::fabs(exact))) return std::vector<double>();
+    }
+  }
+  return rows;
+}
+
+// D_g(u) from the table at t; -1 beyond its zones or in a zone it leaves to the quadrature (special._table_lookup).
+inline double table_lookup(double u, const double *t)
+{
+  const double x = u * t[2];
+  if (!(x >= 0.0 && x < std::ldexp(1.0, TABLE_HIGH))) return -1.0;
+  int k;
+  double s;
+  if (x < std::ldexp(1.0, -TABLE_LOW)) {
+    k = 0;
+    s = x * std::ldexp(1.0, TABLE_LOW);
+  } else {
+    int e;
+    const double m = std::frexp(x, &e);
+    k = e + TABLE_LOW;
+    s = 2.0 * m - 1.0;
+  }
+  const double *zone = t + 3 + NPARAMS + 2 * k;
+  if (zone[0] < 0.0) return -1.0;
+  const int pieces = static_cast<int>(zone[1]);
+  const int at = static_cast<int>(s * pieces), j = at < pieces ? at : pieces - 1;
+  const double *row = t + static_cast<int>(zone[0]) + TABLE_ROW * j;
+  return table_estrin(row + 2, (x - row[0]) * row[1]);
+}
+
+// The noise table of D_g(u) = D(u) / factor(w, r, params) for a = kT nu: zone by zone, the fewest equal pieces
+// (1, 2, 4, ... 256) whose polynomials pass the checks against gaussian_tail at relative 1e-11
+// (the Numba kernels' _noise_table, step for step).
+inline std::vector<double> noise_table(double a, const double *params)
+{
+  const double scale = factor(1.0, 1.0, params);
+  const double root = std::sqrt(a);
+  std::vector<std::vector<double>> zones(TABLE_ZONES);
+  size_t count = 0;
+  for (int k = 0; k < TABLE_ZONES; ++k) {
+    for (int pieces = 1; scale > 0.0 && scale < INFINITY && pieces <= 256; pieces *= 2) {
+      const std::vector<double> xs = table_points(k, pieces);
+      std::vector<double> values(xs.size());
+      for (size_t i = 0; i < xs.size(); ++i) values[i] = gaussian_tail(root * xs[i], a, 1.0, 1.0, params) / scale;
+      zones[k] = table_zone(k, pieces, values, 1e-11);
+      if (!zones[k].empty()) break;
+    }
+    count += zones[k].size();
+  }
+  const size_t head = 3 + NPARAMS + 2 * TABLE_ZONES;
+  std::vector<double> block(head + count);
+  block[0] = static_cast<double>(block.size());
+  block[1] = a;
+  block[2] = 1.0 / root;
+  for (int i = 0; i < NPARAMS; ++i) block[3 + i] = params[i];
+  size_t offset = head;
+  for (int k = 0; k < TABLE_ZONES; ++k) {
+    block[3 + NPARAMS + 2 * k] = zones[k].empty() ? -1.0 : static_cast<double>(offset);
+    block[4 + NPARAMS + 2 * k] = static_cast<double>(zones[k].size() / TABLE_ROW);
+    for (double c : zones[k]) block[offset++] = c;
+  }
+  return block;
+}
+
+// The table for a and params, built on first use and kept (at most 16 per process; then nullptr: the quadrature).
+inline const double *noise_table_for(double a, const double *params)
+{
+  static std::vector<std::vector<double>> tables;
+  for (const std::vector<double> &table : tables) {
+    bool same = table[1] == a;
+    for (int i = 0; same && i < NPARAMS; ++i) same = table[3 + i] == params[i];
+    if (same) return table.data();
+  }
+  if (tables.size() >= 16) return nullptr;
+  tables.push_back(noise_table(a, params));
+  return tables.back().data();
+}
+
 // D(u) = (1/a) int_u^oo f(s) exp(-(s**2 - u**2)/(2*a)) ds (F-22), a = kT nu = kT*mu (ito calculus),
 // f(s) = kappa_f*w*tanh(s/u0): Gauss-Legendre quadrature on geometric panels (gaussian_tail).
 // No closed form: f = kappa_f*w*tanh(u/u0) is not a sum of polynomials in u times exp(c u).
+// From the noise table for a and the parameters (noise_table_for) where there is one.
 inline double noise_amplitude_ito(double u, double w, double r, double mu, double kT, const double *params)
 {
-  return gaussian_tail(u, kT*mu, w, r, params);
+  const double a = kT*mu;
+  const double *table = noise_table_for(a, params);
+  if (table) {
+    const double tabled = table_lookup(u, table);
+    if (tabled >= 0.0) return factor(w, r, params) * tabled;
+  }
+  return gaussian_tail(u, a, w, r, params);
 }
 
 }    // namespace
