@@ -108,6 +108,14 @@ def local_area_fraction(frame: Frame, kernel: float = KERNEL, spacing: float = S
     return np.asarray(density.density, dtype=float)
 
 
+def local_maxima(probability: np.ndarray) -> np.ndarray:
+    """The indices of the local maxima of a histogram p (bins i with p_(i-1) < p_i >= p_(i+1), p = 0
+    beyond the range, so a maximum in the first or last bin counts). Their number is the paper's
+    criterion (two maxima: a bimodal distribution); :func:`bimodality` adds the strict one."""
+    padded = np.pad(np.asarray(probability, float), 1)
+    return np.flatnonzero((padded[1:-1] > padded[:-2]) & (padded[1:-1] >= padded[2:]))
+
+
 def bimodality(values: np.ndarray) -> tuple[np.ndarray, np.ndarray, dict]:
     """The smoothed histogram (centres, probability density) of the pooled grid values, and the
     criterion's numbers: ``phase_separated``, the two maxima, ``dip_ratio``, ``dense_share``."""
@@ -115,8 +123,7 @@ def bimodality(values: np.ndarray) -> tuple[np.ndarray, np.ndarray, dict]:
     counts, _ = np.histogram(np.clip(values, 0.0, TOP - BIN / 2), edges)
     probability = gaussian_filter1d(counts / (counts.sum() * BIN), SMOOTHING / BIN, mode="constant")
     centres = 0.5 * (edges[1:] + edges[:-1])
-    padded = np.pad(probability, 1)  # p = 0 beyond the range: a maximum in the first bin counts
-    maxima = np.flatnonzero((probability > padded[:-2]) & (probability >= padded[2:]))
+    maxima = local_maxima(probability)
     verdict = {"phase_separated": False, "phi_dilute": None, "phi_dense": None, "dip_ratio": None, "dense_share": None}
     first = maxima[np.argmax(probability[maxima])]
     far = maxima[np.abs(centres[maxima] - centres[first]) >= SEPARATION]

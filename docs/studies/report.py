@@ -1,0 +1,195 @@
+"""The MIPS results of issue 28 (Fig. 7 of Hofmann et al. 2025) from finished ``fricgen run`` folders:
+both criteria fixed in advance, per run pooled over its second half and per GSD frame.
+
+For each run folder (config.json, summary.json, trajectory.gsd with a frame every t_R) the local area
+fraction phi(r) of every frame is computed on the detector's grid
+(:func:`fricgen.app.studies.mips.local_area_fraction`, Gaussian kernel s = 1.5 sigma), and the smoothed
+histogram p(phi) of the frames at steps >= ``run.equilibrate`` (the second half) is judged by
+
+- the paper's criterion (sec. II B 3: "A bimodal distribution in the resulting density histogram
+  indicates phase separation"): the number of local maxima of p (:func:`~fricgen.app.studies.mips.local_maxima`),
+  bimodal when it is 2;
+- the strict criterion of :func:`fricgen.app.studies.mips.bimodality`: two maxima at least 0.2 apart
+  whose dip ratio p_min / min(p_max1, p_max2) is at most 0.5, at least 5 % of the grid on each side.
+
+The same two numbers and the dip ratio are computed for every frame alone (the dip ratio against
+time). Written: ``fig7.json`` (a table per run, the per-frame series) and ``fig7_dip_vs_time.png``.
+
+Usage (from the folder that holds the sweep's output, e.g. ``fricgen sweep fig7.toml --out out/fig7``)::
+
+    nice -n 10 python docs/studies/report.py out/fig7/*/ cross/out/*/ --results docs/studies/results
+
+Folders without summary.json (still running) are listed as such and skipped. Time is in t_R (the
+engine's unit of the active runs, gamma = 1), area fractions are dimensionless.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from fricgen.app.studies import mips
+
+DEFAULT = ("out/fig7/*/",)
+
+
+def model_name(config: dict) -> str:
+    """'no friction', 'no noise' (Coulomb-Newton without its contact noise) or 'consistent'."""
+    law = config["law"]
+    if not law["friction"]:
+        return "no friction"
+    return "consistent" if law["contact_noise"] else "no noise"
+
+
+def judge(values: np.ndarray) -> dict:
+    """Both criteria for the pooled grid values of one or more frames.
+
+    Args:
+        values: local area fractions phi (dimensionless), any shape.
+
+    Returns:
+        ``maxima`` (their phi), ``bimodal`` (exactly two maxima: the paper's criterion),
+        ``phase_separated`` (the strict criterion), ``dip_ratio`` (None without a second maximum
+        0.2 away), ``dense_share``, ``phi_dilute``, ``phi_dense`` (None unless strictly separated).
+    """
+    centres, probability, verdict = mips.bimodality(np.ravel(values))
+    peaks = mips.local_maxima(probability)
+    return {
+        "maxima": [round(float(centres[i]), 3) for i in peaks],
+        "maxima_heights": [round(float(probability[i]), 3) for i in peaks],
+        "bimodal": len(peaks) == 2,
+        **{key: value if value is None or isinstance(value, bool) else round(value, 4) for key, value in verdict.items()},
+    }
+
+
+def frame_fields(trajectory: Path) -> tuple[list[int], list[np.ndarray]]:
+    """The steps and local-area-fraction grids of every frame of a 2-D GSD trajectory."""
+    frames, steps = mips.read_frames(trajectory, last=10**9)
+    return steps, [mips.local_area_fraction(frame) for frame in frames]
+
+
+def attempts(folder: Path) -> int:
+    """How many times the run was started (the '# ' lines a sweep writes into run.log; 1 without it)."""
+    log = folder / "run.log"
+    if not log.exists():
+        return 1
+    return max(1, sum(line.startswith("# ") for line in log.read_text(errors="replace").splitlines()))
+
+
+def analyse(folder: Path) -> dict:
+    """The table row and the per-frame series of one finished run folder.
+
+    Args:
+        folder: a ``fricgen run active`` output folder with summary.json and trajectory.gsd.
+
+    Returns:
+        A JSON-simple dict; ``seconds`` is the wall time of the run's last attempt (summary.json),
+        not CPU time.
+    """
+    config = json.loads((folder / "config.json").read_text())
+    summary = json.loads((folder / "summary.json").read_text())
+    dt, equilibrate = config["thermostat"]["dt"], config["run"]["equilibrate"]
+    steps, fields = frame_fields(folder / "trajectory.gsd")
+    second = [field for step, field in zip(steps, fields) if step >= equilibrate]
+    series = []
+    for step, field in zip(steps, fields):
+        verdict = judge(field)
+        series.append(
+            {
+                "t": round(step * dt, 4),
+                "maxima": len(verdict["maxima"]),
+                "dip_ratio": None if verdict["dip_ratio"] is None else round(verdict["dip_ratio"], 4),
+                "separated": verdict["phase_separated"],
+            }
+        )
+    late = [row for row in series if row["t"] >= equilibrate * dt]
+    initial = config["system"].get("initial")
+    return {
+        "run": folder.name,
+        "model": model_name(config),
+        "seed": config["run"]["seed"],
+        "n": config["system"]["n"],
+        "mass": config["system"]["mass"],
+        "F0": config["active"]["force"],
+        "packing_fraction": config["system"]["packing_fraction"],
+        "dt": dt,
+        "length": summary["time"],
+        "window": [equilibrate * dt, summary["time"]],
+        "initial": None if initial is None else Path(initial).parent.name,
+        "pooled": {"frames": len(second), **judge(np.concatenate([f.ravel() for f in second]))},
+        "frames_bimodal": sum(row["maxima"] == 2 for row in late),
+        "frames_by_maxima": {str(k): sum(row["maxima"] == k for row in late) for k in sorted({row["maxima"] for row in late})},
+        "frames_separated": sum(bool(row["separated"]) for row in late),
+        "frames_window": len(late),
+        "summary_verdict": {key: summary["mips"].get(key) for key in ("phase_separated", "dip_ratio", "frames")},
+        "T_trans": summary["T_trans"],
+        "T_rot": summary["T_rot"],
+        "seconds": round(summary["seconds"], 1),
+        "attempts": attempts(folder),
+        "series": series,
+    }
+
+
+def dip_figure(runs: list[dict], path: Path) -> Path:
+    """The dip ratio of each frame against time, one panel for runs from a lattice, one for cross-starts.
+
+    A frame with no second maximum 0.2 away (no dip) is drawn at 1 with an open marker; the dashed
+    line is the strict threshold 0.5.
+    """
+    figure = Figure(figsize=(10, 3.8), layout="constrained")
+    panels = figure.subplots(1, 2, sharey=True)
+    titles = ("from a lattice (N = 2000, F0 = 35, phi = 0.5)", "cross-starts (time since the restart)")
+    for axis, title, group in zip(panels, titles, ([r for r in runs if not r["initial"]], [r for r in runs if r["initial"]])):
+        for index, run in enumerate(group):
+            colour = f"C{index}"
+            t = np.array([row["t"] for row in run["series"]])
+            dip = np.array([np.nan if row["dip_ratio"] is None else row["dip_ratio"] for row in run["series"]])
+            label = f"{run['run']} ({run['model']})" if run["initial"] else f"{run['model']}, seed {run['seed']}"
+            axis.plot(t, dip, "-", color=colour, lw=1, label=label)
+            none = np.isnan(dip)
+            axis.plot(t[none], np.ones(none.sum()), "o", mfc="none", color=colour, ms=3)
+        axis.axhline(mips.DIP, color="k", ls="--", lw=0.8)
+        axis.set_title(title, fontsize=9)
+        axis.set_xlabel(r"$t$ / $t_R$")
+        axis.set_ylim(0, 1.05)
+        if group:
+            axis.legend(frameon=False, fontsize=7)
+    panels[0].set_ylabel("dip ratio of the frame (1: no dip)")
+    figure.savefig(path, dpi=80)
+    return path
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Analyse the folders given (default: out/fig7/*/), write fig7.json and fig7_dip_vs_time.png."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("folders", nargs="*", help="run folders (default: out/fig7/*/)")
+    parser.add_argument("--results", type=Path, default=Path(__file__).parent / "results")
+    args = parser.parse_args(argv)
+    folders = [Path(f) for f in args.folders] or sorted(p for pattern in DEFAULT for p in Path().glob(pattern))
+    runs, pending = [], []
+    for folder in folders:
+        if (folder / "summary.json").exists():
+            runs.append(analyse(folder))
+        else:
+            pending.append(folder.name)
+    args.results.mkdir(parents=True, exist_ok=True)
+    record = {"criterion_paper": "exactly two local maxima of the smoothed pooled histogram", "criterion_strict": mips.CRITERION}
+    record.update(kernel=mips.KERNEL, spacing=mips.SPACING, bin=mips.BIN, smoothing=mips.SMOOTHING, runs=runs, not_finished=pending)
+    (args.results / "fig7.json").write_text(json.dumps(record, indent=1) + "\n")
+    dip_figure(runs, args.results / "fig7_dip_vs_time.png")
+    for run in runs:
+        pooled = run["pooled"]
+        print(
+            f"{run['run']:28s} {run['model']:11s} maxima {pooled['maxima']} strict {pooled['phase_separated']} "
+            f"dip {pooled['dip_ratio']} phi {pooled['phi_dilute']}/{pooled['phi_dense']} "
+            f"frames bimodal {run['frames_bimodal']}/{run['frames_window']} strict {run['frames_separated']}/{run['frames_window']}"
+        )
+    print("not finished:", pending)
+
+
+if __name__ == "__main__":
+    main()
