@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from fricgen.app.cli import main
-from fricgen.app.studies.mips import Frame, detect, detect_trajectory, local_area_fraction, run_mips
+from fricgen.app.studies.mips import Frame, detect, detect_trajectory, local_area_fraction, local_maxima, run_mips
 
 R = 0.5
 DISC = np.pi * R**2
@@ -88,6 +88,15 @@ def test_a_smooth_density_gradient_is_not_phase_separated(seed):
 def test_two_phases_too_close_are_not_called_separated():
     frame, _ = coexistence(0.55, 0.4, 60.0, 2, "slab")
     assert not detect([frame]).phase_separated
+
+
+def test_local_maxima_count_the_humps_of_a_histogram_including_its_edges():
+    assert local_maxima(np.array([3.0, 2.0, 1.0, 4.0, 4.0, 0.5])).tolist() == [0, 3]  # edge bin; a plateau once
+    assert local_maxima(np.array([0.0, 1.0, 2.0, 1.0, 0.0])).tolist() == [2]
+    frame, _ = coexistence(0.75, 0.1, 60.0, 3, "slab")
+    mips = detect([frame])
+    assert len(local_maxima(np.array(mips.probability))) >= 2
+    assert len(local_maxima(np.array(detect([poisson(0.4, 40.0, 6)]).probability))) == 1
 
 
 def test_the_grid_holds_the_disc_areas():
