@@ -40,10 +40,10 @@ from .backends.numba_kernels.accuracy import KERNEL_TOLERANCE, kernel_accuracy
 from .backends.numba_kernels.kernel_code import CONTACT_SIGNATURE, DECORATOR, SIGNATURES
 from .backends.numba_kernels.modules import law_module, package_module, potential_module, special_module
 from .errors import DeriveError
-from .law import potentials
-from .law.catalogues import GENERATED, generate_command, is_built_in, kernel_folder, source_checkout
+from .law import manifests, potentials
+from .law.catalogues import GENERATED, check_law_files, generate_command, inert, is_built_in, kernel_folder, law_names, source_checkout
 from .law.expressions import time_limit
-from .law.lawdata import CATALOGUE, write_text_atomic
+from .law.lawdata import CATALOGUE, NotAFile, read_regular, write_text_atomic
 from .law.lawdata import POTENTIALS as POTENTIALS_SOURCE
 from .law.laws import FrictionLaw, load_law
 from .law.potentials import EXTERNAL_POTENTIALS, PAIR_POTENTIALS, check_external
@@ -67,6 +67,7 @@ class Written:
 
     path: Path
     status: str  # "written", "unchanged" or "removed"
+    sha256: str = ""  # of the text written or found (not re-read from the file: what fricgen wrote)
 
 
 def verify(model: NoiseModel) -> Report:
@@ -86,12 +87,18 @@ def verify(model: NoiseModel) -> Report:
 
 
 def write_if_changed(path: Path, text: str) -> Written:
-    """Write ``text`` atomically unless the file already holds exactly that (keeps Numba's cache valid)."""
-    if path.exists() and path.read_bytes() == text.encode():
-        return Written(path, "unchanged")
+    """Write ``text`` atomically unless the file already holds exactly that (keeps Numba's cache valid).
+    DeriveError (one line) where something that is not a regular file (a folder, a FIFO) is in the way."""
+    try:
+        if read_regular(path, len(text.encode()) + 1) == text.encode():
+            return Written(path, "unchanged", manifests.sha256(text.encode()))
+    except FileNotFoundError:
+        pass
+    except NotAFile as error:
+        raise DeriveError(f"{inert(str(path))} is {error.kind}, not a file fricgen wrote: move it away, then generate again") from None
     path.parent.mkdir(parents=True, exist_ok=True)
     write_text_atomic(path, text)
-    return Written(path, "written")
+    return Written(path, "written", manifests.sha256(text.encode()))
 
 
 def verified_models(law: FrictionLaw, seconds: float | None = DERIVATION_TIME_LIMIT) -> tuple[dict[str, NoiseModel], list[Report]]:
@@ -117,7 +124,10 @@ def generate(names: list[str] | None = None, catalogue: Path = CATALOGUE, output
     folder DIR); the potentials with the built-in catalogue only.
 
     Idempotent: unchanged files are not touched. With ``names`` None, modules of laws no longer
-    in the catalogue are removed.
+    in the catalogue are removed. Every law is read, derived and verified before anything is written:
+    a law that is refused or fails leaves the output as it was. The sha256 of every file written or
+    found unchanged is recorded in the user's cache (:mod:`fricgen.derive.law.manifests`; not for the
+    package's own generated/), which the kernel loader checks before it runs any of them.
     """
     catalogue, built_in = Path(catalogue), is_built_in(catalogue)
     if built_in and output is None and not source_checkout():
@@ -133,10 +143,20 @@ def generate(names: list[str] | None = None, catalogue: Path = CATALOGUE, output
             f"{POTENTIALS_SOURCE} changed since fricgen.derive.law.potentials was imported: the potentials and the weights of laws would be"
             " emitted from the old version; run `fricgen generate` in a new Python process"
         )
-    available = sorted(p.stem for p in catalogue.glob("*.toml"))
+    available = law_names(catalogue) if built_in or names else check_law_files(catalogue)
     unknown = sorted(set(names or ()) - set(available))
     if unknown:
         raise GenerationError(f"unknown law(s) {unknown}; the catalogue {catalogue} has {available}")
+    laws = {name: load_law(catalogue / f"{name}.toml") for name in names or available}  # all read (or refused) before any is derived
+    reports, texts = [], {}
+    for name, law in laws.items():
+        models, law_reports = verified_models(law)
+        reports += law_reports
+        source = f"derive/law/catalogue/{name}.toml" if built_in else f"{catalogue.resolve().name}/{name}.toml"
+        texts[name] = law_module(law, models, law.source_hash, source, generate_command(name, catalogue))
+    record = not (output.resolve() == GENERATED.resolve())  # the package's own kernels are trusted as installed code
+    if record:
+        manifests.store()  # a cache folder to record the files in, or nothing is written
     written = [
         write_if_changed(
             output / "__init__.py", package_module("Emitted code only: every module here is written by fricgen.derive, never by hand.\n")
@@ -146,21 +166,22 @@ def generate(names: list[str] | None = None, catalogue: Path = CATALOGUE, output
     ]
     if built_in:
         written += _emit_potentials(output)
-    reports = []
-    for name in names or available:
-        path = catalogue / f"{name}.toml"
-        law = load_law(path)
-        models, law_reports = verified_models(law)
-        reports += law_reports
-        source = f"derive/law/catalogue/{name}.toml" if built_in else f"{catalogue.resolve().name}/{name}.toml"
-        text = law_module(law, models, law.source_hash, source, generate_command(name, catalogue))
-        written.append(write_if_changed(output / "laws" / f"{name}.py", text))
+    written += [write_if_changed(output / "laws" / f"{name}.py", text) for name, text in texts.items()]
     if names is None:
         for orphan in sorted((output / "laws").glob("*.py")):
             if orphan.stem != "__init__" and orphan.stem not in available:
                 orphan.unlink()
                 written.append(Written(orphan, "removed"))
+    if record:
+        _record(output, written)
     return written, reports
+
+
+def _record(output: Path, written: list[Written]) -> None:
+    """The sha256 of every file written or found unchanged, in the manifest of ``output`` (fricgen.derive.law.manifests)."""
+    kept = {item.path.relative_to(output).as_posix(): item.sha256 for item in written if item.status != "removed"}
+    gone = tuple(item.path.relative_to(output).as_posix() for item in written if item.status == "removed")
+    manifests.record(output, kept, gone)
 
 
 def _emit_potentials(output: Path) -> list[Written]:

@@ -19,6 +19,12 @@ If the source was edited since, loading fails with the command that regenerates 
 regeneration in the same process (a notebook), the module is reloaded, so the new kernels take
 effect at once. SymPy is never imported here.
 
+Kernels are code, law folders data: the built-in kernels (fricgen.generated) are trusted as
+installed code; a user folder's DIR/generated/ runs only when every file of it that loading runs is,
+byte for byte, what fricgen wrote there on this machine, as recorded in the user's cache
+(:mod:`fricgen.derive.law.manifests`; docs/trust-model.md). A kernel edited by hand, or a file dropped
+there, is refused with the command that regenerates it, before anything of the folder runs.
+
 A law's name is looked up on the search path of :mod:`fricgen.derive.law.catalogues`: the user's law folders
 (:func:`user_laws` blocks, ``FRICGEN_LAWS``), then the built-in catalogue. The kernels of a user
 folder DIR are those generated into DIR/generated/ (``fricgen generate --laws DIR LAW``); potentials
@@ -27,9 +33,11 @@ are built-in only.
 
 from __future__ import annotations
 
+import ast
 import hashlib
 import importlib
 import importlib.util
+import os
 import sys
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -40,6 +48,7 @@ import numba
 import numpy as np
 from numba import types
 
+import fricgen.derive.law.manifests as manifests
 from fricgen.derive.law.catalogues import CatalogueError, find_law, generate_command, is_built_in, kernel_folder, law_folder, user_laws
 from fricgen.derive.law.lawdata import POSITIVE, Interval, LawFileError, potential_source_hash, read_law_data, source_hash, weight_potential
 
@@ -182,28 +191,82 @@ def _import(module_name: str, missing: Callable[[], KernelError], what: str, rel
         raise KernelError(f"cannot import {what} ({module_name}): {error}") from error
 
 
-def _kernel_package(catalogue: Path, missing: Callable[[], KernelError]) -> str:
-    """The module name of the package that holds a catalogue's kernels: ``fricgen.generated`` for the built-in
-    catalogue; for a user folder DIR, DIR/generated/ imported by its path under a name of its own
-    (stable: from the folder's path), so that Numba's cache and the reload after a regeneration work."""
-    if is_built_in(catalogue):
-        return "fricgen.generated"
+#: The files of a user's kernel folder that loading a law runs, besides its laws/<law>.py.
+PACKAGE_FILES = ("__init__.py", "special.py", "laws/__init__.py")
+
+
+def _user_kernels(
+    catalogue: Path, name: str, missing: Callable[[], KernelError], command: str, check: Callable[[str | None], None]
+) -> ModuleType:
+    """The module of law ``name`` from a user folder's DIR/generated/, run only once every file it needs
+    (:data:`PACKAGE_FILES` and laws/<name>.py) proved to be the bytes that fricgen wrote there
+    (:func:`fricgen.derive.law.manifests.verified`): checked before any of them runs. The verified bytes
+    run from their trusted copies in the user's cache, under a package name of the folder's own, with
+    an empty __path__ (no other module of the folder can be imported); a module is run again when its
+    bytes changed (a regeneration in the same process). Stale kernels (their SOURCE_HASH, read from
+    the text, not that of the law file) are refused before they run: ``check(hash)`` raises."""
     folder = kernel_folder(catalogue)
-    name = "fricgen_user_laws_" + hashlib.sha256(str(folder).encode()).hexdigest()[:16]
-    if name not in sys.modules:
-        if not (folder / "__init__.py").is_file():
-            raise missing()
-        spec = importlib.util.spec_from_file_location(name, folder / "__init__.py", submodule_search_locations=[str(folder)])
-        package = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(package)
-        sys.modules[name] = package
-    return name
+    law_file = f"laws/{name}.py"
+    if not os.path.lexists(folder / law_file):
+        raise missing()
+    try:
+        sources = manifests.verified(folder, [*PACKAGE_FILES, law_file], command)
+    except manifests.UntrustedFile as error:
+        raise KernelError(str(error)) from None
+    check(_source_hash(sources[law_file]))
+    package = "fricgen_user_laws_" + hashlib.sha256(str(folder).encode()).hexdigest()[:16]
+    parts = [(package, "__init__.py"), (f"{package}.special", "special.py"), (f"{package}.laws", "laws/__init__.py")]
+    for module_name, file in [*parts, (f"{package}.laws.{name}", law_file)]:
+        _run_verified(module_name, folder, file, sources[file])
+    return sys.modules[f"{package}.laws.{name}"]
+
+
+def _source_hash(source: bytes) -> str | None:
+    """The SOURCE_HASH a law module's text assigns (a string literal at module level), or None."""
+    try:
+        tree = ast.parse(source)
+    except (SyntaxError, ValueError):
+        return None
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and [getattr(t, "id", None) for t in node.targets] == ["SOURCE_HASH"]:
+            return node.value.value if isinstance(node.value, ast.Constant) and isinstance(node.value.value, str) else None
+    return None
+
+
+def _run_verified(module_name: str, folder: Path, file: str, source: bytes) -> ModuleType:
+    digest = hashlib.sha256(source).hexdigest()
+    current = sys.modules.get(module_name)
+    if current is not None and getattr(current, "__fricgen_sha256__", None) == digest:
+        return current
+    try:
+        copy = manifests.trusted_copy(folder, file, source)
+    except manifests.UntrustedFile as error:
+        raise KernelError(str(error)) from None
+    is_package = file.endswith("__init__.py")
+    module = importlib.util.module_from_spec(importlib.util.spec_from_loader(module_name, None, origin=str(copy), is_package=is_package))
+    module.__file__, module.__fricgen_sha256__ = str(copy), digest
+    if is_package:
+        module.__path__ = []
+    sys.modules[module_name] = module
+    try:
+        exec(compile(source, str(copy), "exec", dont_inherit=True), module.__dict__)  # noqa: S102 - fricgen's own verified code
+    except ImportError as error:
+        sys.modules.pop(module_name, None)
+        raise KernelError(f"cannot run the kernels of {folder / file}: {error}; install what they need, e.g. pip install numba") from error
+    except BaseException:
+        sys.modules.pop(module_name, None)
+        raise
+    parent, _, child = module_name.rpartition(".")
+    if parent:
+        setattr(sys.modules[parent], child, module)
+    return module
 
 
 def load_law_kernels(name: str, catalogue: str | Path | None = None) -> LawKernels:
     """Kernels of the law ``name`` from the catalogue folder ``catalogue``, by default the first on the
     search path (user folders: :func:`user_laws`, FRICGEN_LAWS; then the built-in catalogue) that has
-    it; raises KernelError if the law is unknown, its kernels missing or stale."""
+    it; raises KernelError if the law is unknown, its kernels missing, not written by fricgen on this
+    machine (a user folder's, see :func:`_user_kernels`) or stale."""
     try:
         path = find_law(name, catalogue)
         data = read_law_data(path)
@@ -215,13 +278,20 @@ def load_law_kernels(name: str, catalogue: str | Path | None = None) -> LawKerne
     def missing():
         return KernelError(f"no generated kernels for law {name}: run `{command}`")
 
-    module_name = f"{_kernel_package(path.parent, missing)}.laws.{name}"
-    module = _import(module_name, missing, f"the kernels of law {name}")
-    if module.SOURCE_HASH != digest:
-        module = _import(module_name, missing, f"the kernels of law {name}", reload=True)  # regenerated since it was imported?
-    if module.SOURCE_HASH != digest:
-        changed = str(path) if weight_potential(data) is None else f"{path} or derive/law/potentials.py (its weight {data['weight']})"
-        raise KernelError(f"the kernels of law {name} are stale: {changed} changed after they were generated; run `{command}`")
+    def check(found: str | None) -> None:
+        if found != digest:
+            changed = str(path) if weight_potential(data) is None else f"{path} or derive/law/potentials.py (its weight {data['weight']})"
+            raise KernelError(f"the kernels of law {name} are stale: {changed} changed after they were generated; run `{command}`")
+
+    if is_built_in(path.parent):
+        module_name = f"fricgen.generated.laws.{name}"
+        module = _import(module_name, missing, f"the kernels of law {name}")
+        if module.SOURCE_HASH != digest:
+            module = _import(module_name, missing, f"the kernels of law {name}", reload=True)  # regenerated since it was imported?
+        check(module.SOURCE_HASH)
+    else:
+        module = _user_kernels(path.parent, name, missing, command, check)
+        check(module.SOURCE_HASH)
     return LawKernels(name, module, path)
 
 

@@ -20,7 +20,13 @@ ROOT = Path(__file__).resolve().parents[1]
 KERNEL_LAYER = {"fricgen.kernels", "fricgen.rng", "fricgen.schema", "fricgen.errors"}
 ENGINES = ("fricgen.langevin", "fricgen.rods")
 #: What an engine may import from derive: the plain-data modules, no SymPy.
-DERIVE_DATA = {"fricgen.derive.calculus", "fricgen.derive.law.lawdata", "fricgen.derive.law.catalogues", "fricgen.derive.errors"}
+DERIVE_DATA = {
+    "fricgen.derive.calculus",
+    "fricgen.derive.law.lawdata",
+    "fricgen.derive.law.catalogues",
+    "fricgen.derive.law.manifests",
+    "fricgen.derive.errors",
+}
 
 
 def _modules_after(statement):

@@ -16,14 +16,16 @@ from __future__ import annotations
 
 import contextlib
 import importlib.resources
+import json
 import os
+import re
 import shlex
 from collections.abc import Iterator, Sequence
 from contextvars import ContextVar
 from pathlib import Path
 
 from ..errors import DeriveError
-from .lawdata import CATALOGUE
+from .lawdata import CATALOGUE, file_kind
 
 #: The environment variable that names user law folders (os.pathsep-separated).
 LAWS_ENV = "FRICGEN_LAWS"
@@ -67,9 +69,45 @@ def source_checkout() -> bool:
 
 
 def generate_command(name: str, catalogue: str | Path = CATALOGUE) -> str:
-    """The command that (re)generates the kernels of the law ``name`` of ``catalogue``."""
-    folder = "" if is_built_in(catalogue) else f"--laws {shlex.quote(str(Path(catalogue).resolve()))} "
+    """The command that (re)generates the kernels of the law ``name`` of ``catalogue``, on one line
+    (a folder with a newline or another unprintable character in its path is quoted $'...')."""
+    folder = "" if is_built_in(catalogue) else f"--laws {shell_word(str(Path(catalogue).resolve()))} "
     return f"fricgen generate {folder}{name}"
+
+
+def shell_word(text: str) -> str:
+    """``text`` as one word of a POSIX shell command line, on one line: shlex.quote's form when
+    ``text`` is printable, else bash's ANSI-C quoting $'...' (bytes that are not UTF-8, kept by
+    Python as surrogates, as their \\xHH)."""
+    if text.isprintable():
+        return shlex.quote(text)
+
+    def escape(char: str) -> str:
+        code = ord(char)
+        if char in "\\'":
+            return "\\" + char
+        if char.isprintable():
+            return char
+        if 0xDC80 <= code <= 0xDCFF:  # an undecodable byte of a file name (surrogateescape)
+            return f"\\x{code - 0xDC00:02x}"
+        return f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}" if code < 0x10000 else f"\\U{code:08x}"
+
+    return "$'" + "".join(escape(char) for char in text) + "'"
+
+
+#: Characters that a path or a name may hold to be printed as it is into a comment of generated code.
+_INERT = re.compile(r"[A-Za-z0-9 _.,+=@%:~/'-]*")
+
+
+def inert(text: str) -> str:
+    """``text`` to print into a comment of generated code (Python, C++, CMake, a LAMMPS input), where
+    it must stay a comment: as it is when it holds only letters, digits, spaces and ``_.,+=@%:~/'-``
+    (so no line end, backslash, ``*/``, ``??`` or ``&``), else as a JSON string of ASCII characters
+    with ``/`` and ``?`` escaped too (``"a\\nb"``), which ends in a quote, never a backslash."""
+    if _INERT.fullmatch(text):
+        return text
+    quoted = json.dumps(text, ensure_ascii=True)
+    return quoted.replace("/", "\\/").replace("?", "\\u003f").replace("\x7f", "\\u007f")
 
 
 def user_laws(*folders: str | Path) -> contextlib.AbstractContextManager[tuple[Path, ...]]:
@@ -100,18 +138,51 @@ def law_names(catalogue: str | Path) -> list[str]:
     return sorted(path.stem for path in Path(catalogue).glob("*.toml") if path.stem.isidentifier())
 
 
+def check_law_files(catalogue: str | Path) -> list[str]:
+    """The names of the laws of a user's law folder, every NAME.toml a regular file with an identifier
+    as NAME; CatalogueError naming the first that is not, or saying that the folder holds none."""
+    folder = Path(catalogue)
+    for path in sorted(p for p in folder.glob("*.toml") if not p.name.startswith(".")):  # not hidden files (editors' locks)
+        if not path.stem.isidentifier():
+            better = re.sub(r"\W", "_", path.stem, flags=re.ASCII)
+            better = better if better.isidentifier() else f"law_{better}"
+            raise CatalogueError(
+                f"{inert(str(path))}: a law file's name must be an identifier (letters, digits, underscores, not starting with a"
+                f" digit), as it names the law and its kernel module: rename it {better}.toml"
+            )
+        kind = file_kind(path)
+        if kind != "a regular file":
+            raise CatalogueError(f"{inert(str(path))} is {kind}, not a law file: a law file is a TOML text file, NAME.toml")
+    names = law_names(folder)
+    if not names:
+        raise CatalogueError(f"the law folder {inert(str(folder))} holds no law files (NAME.toml): there is nothing to verify or generate")
+    return names
+
+
 def find_law(name: str, catalogue: str | Path | None = None) -> Path:
     """The law file of ``name``: in ``catalogue`` if given, else on the search path. CatalogueError if
-    no catalogue has it, or two do."""
+    no catalogue has it, or two do, or its NAME.toml is not a regular file (a FIFO, a folder, a
+    dangling symbolic link: said as such)."""
     if catalogue is None:
         folders = (*user_folders(), CATALOGUE)
     else:
         folders = (CATALOGUE if is_built_in(catalogue) else law_folder(catalogue),)
-    found = [folder / f"{name}.toml" for folder in folders if name.isidentifier() and (folder / f"{name}.toml").is_file()]
+    candidates = [folder / f"{name}.toml" for folder in folders if name.isidentifier()]
+    for path in candidates:
+        kind = file_kind(path)
+        if kind not in ("a regular file", "missing"):
+            raise CatalogueError(f"law {name!r}: {inert(str(path))} is {kind}, not a law file: a law file is a TOML text file, NAME.toml")
+    found = [path for path in candidates if path.is_file()]
     if len(found) > 1:
         raise CatalogueError(
             f"law {name!r} is in two catalogues, {found[0]} and {found[1]}: a name must be unique "
             "(a user law may not take the name of a built-in law or of a law in another user folder); rename one"
+        )
+    if not found and not name.isidentifier():
+        better = re.sub(r"\W", "_", name, flags=re.ASCII)
+        raise CatalogueError(
+            f"unknown law {inert(name)}: a law's name is an identifier (letters, digits, underscores), and so is the name of its file"
+            f" NAME.toml; a file {inert(name)}.toml is not read as a law: rename it {inert(better)}.toml (and its name)"
         )
     if not found:
         available = sorted({law for folder in folders for law in law_names(folder)})
@@ -123,7 +194,8 @@ def laws_by_catalogue(names: Sequence[str] = ()) -> dict[Path, list[str]]:
     """The named laws, each found on the search path, by catalogue. Without names: every law of the
     user folders, or of the built-in catalogue when there are none (CatalogueError for a clash)."""
     if not names:
-        names = [law for folder in user_folders() or (CATALOGUE,) for law in law_names(folder)]
+        folders = user_folders()
+        names = [law for folder in folders for law in check_law_files(folder)] if folders else law_names(CATALOGUE)
     grouped: dict[Path, list[str]] = {}
     for name in dict.fromkeys(names):
         grouped.setdefault(find_law(name).parent, []).append(name)
@@ -134,12 +206,15 @@ __all__ = [
     "GENERATED",
     "LAWS_ENV",
     "CatalogueError",
+    "check_law_files",
     "find_law",
     "generate_command",
+    "inert",
     "is_built_in",
     "kernel_folder",
     "law_folder",
     "law_names",
+    "shell_word",
     "source_checkout",
     "laws_by_catalogue",
     "user_folders",

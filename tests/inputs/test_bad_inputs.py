@@ -43,7 +43,7 @@ def trap(monkeypatch):
     monkeypatch.setattr(fricgen.rods.simulation.RodSimulation, "__init__", _trap)
     monkeypatch.setattr(fricgen.app.run.runner, "execute", _trap)
     fakes = {
-        "fricgen.derive.driver": {"generate": _trap, "GENERATED": Path("generated")},
+        "fricgen.derive.driver": {"generate": _trap, "verify": _trap, "GENERATED": Path("generated")},
         "fricgen.derive.noise.derivation": {"derive_noise": _trap},
         "fricgen.derive.noise.verification": {"verify": _trap},
         "fricgen.derive.law.laws": {"catalogue": _trap, "load_law": _trap},

@@ -93,8 +93,10 @@ class CxxKernelPrinter(CXX17CodePrinter):
 
 
 def comment(text: str, indent: str = "") -> str:
-    """``text`` as // comment lines."""
-    return "".join(f"{indent}// {line}".rstrip() + "\n" for line in text.splitlines())
+    """``text`` as // comment lines; a line that would end in a backslash (a line continuation of a law's
+    f) gets a mark after it, so that it cannot splice the next line into the comment."""
+    lines = (f"{indent}// {line}".rstrip() for line in text.splitlines())
+    return "".join(line + (" (continued)" if line.endswith("\\") else "") + "\n" for line in lines)
 
 
 # --- bodies ------------------------------------------------------------------------------------

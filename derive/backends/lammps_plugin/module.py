@@ -26,6 +26,7 @@ from string import Template
 
 from ...calculus import velocity_verlet_refusal
 from ...errors import DeriveError
+from ...law.catalogues import inert
 from ...law.laws import FrictionLaw
 from ...noise.derivation import NoiseModel
 from ..printing import header
@@ -186,12 +187,14 @@ _SYSTEMS = {
 
 
 def plugin_files(law: FrictionLaw, model: NoiseModel, digest: str, source: str) -> dict[str, str]:
-    """The text of every file of the plugin of ``law`` for the verified ``model`` (Itô), by file name."""
+    """The text of every file of the plugin of ``law`` for the verified ``model`` (Itô), by file name;
+    ``source`` (it holds the name of a user's folder) printed into the comments by
+    :func:`fricgen.derive.law.catalogues.inert`."""
     calculus = model.calculus.value
     check_calculus(law, calculus)
     form = "closed form" if model.closed_form else "integral (F-22), quadrature"
     lines = [
-        f"Source: law '{law.name}' ({source}), f = {' '.join(law.source.split())}",
+        f"Source: law '{law.name}' ({inert(source)}), f = {' '.join(law.source.split())}",
         f"LAMMPS pair style fricgen/{law.name}, calculus {calculus} ({form}); time scheme: velocity Verlet = Euler–Maruyama",
         f"Source hash: {digest}",
         f"Regenerate: fricgen lammps {law.name}",

@@ -13,6 +13,7 @@ import sympy as sp
 from sympy.integrals.quadrature import gauss_legendre
 
 from ...law import potentials
+from ...law.catalogues import inert
 from ...law.lawdata import potential_source_hash
 from ...law.laws import FrictionLaw
 from ...law.potentials import EXTERNAL_POTENTIALS, PAIR_POTENTIALS, Potential
@@ -78,16 +79,18 @@ def _quadrature_constants() -> str:
 
 def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, source: str, regenerate: str = "") -> str:
     """The text of ``generated/laws/<law>.py`` for verified models of ``law``; ``regenerate`` is the
-    command that regenerates it (``fricgen generate LAW`` by default)."""
+    command that regenerates it (``fricgen generate LAW`` by default). ``source`` and ``regenerate``, which
+    hold the name of a user's folder, are printed into the header's comments by
+    :func:`fricgen.derive.law.catalogues.inert` (quoted and escaped unless plain)."""
     params = [p.symbol for p in law.parameters]
     forms = ", ".join(f"{c} ({'closed form' if m.closed_form else 'integral (F-22), quadrature'})" for c, m in models.items())
     top = header(
         [
-            f"Source: law '{law.name}' ({source}), f = {' '.join(law.source.split())}",
+            f"Source: law '{law.name}' ({inert(source)}), f = {' '.join(law.source.split())}",
             f"Calculi: {forms}",
             *([f"Parameter ranges (RANGES): f >= 0 and finite over them, {law.range_check}"] if law.range_check else []),
             f"Source hash: {digest}",
-            f"Regenerate: {regenerate or f'fricgen generate {law.name}'}",
+            f"Regenerate: {inert(regenerate or f'fricgen generate {law.name}')}",
         ]
     )
     doc = (

@@ -24,6 +24,7 @@ import hashlib
 import importlib.util
 import os
 import shutil
+import stat
 import subprocess
 import sys
 from pathlib import Path
@@ -133,13 +134,32 @@ def plugin_texts(name: str, calculus: str = "ito") -> dict[str, str]:
     return plugin_files(law, models[calculus], law.source_hash, source)
 
 
+def plugin_sources(law: str) -> tuple[str, ...]:
+    """The files of a plugin's folder that CMake reads to build it."""
+    return (f"pair_fricgen_{law}.h", f"pair_fricgen_{law}.cpp", f"fricgen_{law}_plugin.cpp", "lammpsplugin.h", "CMakeLists.txt")
+
+
+def _packaged(folder: Path) -> bool:
+    """Whether ``folder`` is in the package's generated/ (trusted as installed code)."""
+    from fricgen.derive.law.catalogues import GENERATED
+
+    return folder.resolve().is_relative_to(GENERATED.resolve())
+
+
 def emit_plugin(name: str, calculus: str = "ito", out: str | Path | None = None) -> tuple[Path, list[tuple[Path, str]]]:
-    """Write the plugin's files into ``out`` (default :func:`plugin_folder`); returns the folder and
-    (path, "written" or "unchanged") per file."""
+    """Write the plugin's files into ``out`` (default :func:`plugin_folder`) and record their sha256 in
+    the user's cache (fricgen.derive.law.manifests; not for the package's own generated/); returns the
+    folder and (path, "written" or "unchanged") per file."""
     from fricgen.derive.driver import write_if_changed
+    from fricgen.derive.law import manifests
 
     folder = Path(out) if out is not None else plugin_folder(name)
-    written = [write_if_changed(folder / file, text) for file, text in plugin_texts(name, calculus).items()]
+    texts = plugin_texts(name, calculus)
+    if not _packaged(folder):
+        manifests.store()  # somewhere to record them, or nothing is written
+    written = [write_if_changed(folder / file, text) for file, text in texts.items()]
+    if not _packaged(folder):
+        manifests.record(folder.resolve(), {item.path.name: item.sha256 for item in written})
     return folder, [(item.path, item.status) for item in written]
 
 
@@ -157,30 +177,90 @@ def default_build_folder(law: str, digest: str) -> Path:
     return cache / "fricgen" / "lammps" / f"{law}-{digest[:16]}"
 
 
+STAMP = "fricgen-sources.sha256"
+
+
+def verified_sources(folder: Path, law: str) -> Path:
+    """The folder CMake builds from: the package's own plugin folder as it is; any other only if each
+    file that CMake reads is what ``fricgen lammps`` wrote there (manifests.verified), and then the
+    trusted copies of those bytes in the user's cache, a folder that holds nothing else (a header
+    dropped beside the sources cannot be included). LammpsError (one line) otherwise."""
+    from fricgen.derive.law import manifests
+    from fricgen.derive.law.catalogues import shell_word
+
+    if _packaged(folder):
+        return folder
+    try:
+        sources = manifests.verified(folder, list(plugin_sources(law)), f"fricgen lammps {law} --out {shell_word(str(folder))}")
+        copies = [manifests.trusted_copy(folder, name, data) for name, data in sources.items()]
+    except manifests.UntrustedFile as error:
+        raise LammpsError(str(error)) from None
+    return copies[0].parent
+
+
+def _built_here(build: Path, plugin: Path, digest: str) -> bool:
+    """Whether ``build`` holds a plugin that fricgen built from these sources: its stamp says so and
+    the record in the user's cache holds the sha256 of both the stamp and the .so as they are."""
+    from fricgen.derive.law import manifests
+
+    try:
+        files = manifests.verified(build, [plugin.name, STAMP], "fricgen lammps")
+    except manifests.UntrustedFile:
+        return False
+    return files[STAMP].decode(errors="replace").strip() == digest
+
+
+def _regular_or_absent(path: Path, flag: str) -> None:
+    from fricgen.derive.law.lawdata import file_kind
+
+    kind = file_kind(path)
+    if kind not in ("a regular file", "missing"):
+        raise LammpsError(f"{flag}: {path} is {kind}, not a file of fricgen's build: give another build folder")
+
+
 def build_plugin(folder: str | Path, lammps: Lammps, build: str | Path | None = None, jobs: int = 2) -> Path:
-    """Configure and build the plugin of the sources in ``folder`` with CMake; returns the .so. A build
-    whose stamp matches the hash of the sources and LAMMPS is reused as it is."""
+    """Configure and build the plugin of the sources in ``folder`` with CMake (from their verified copies,
+    :func:`verified_sources`); returns the .so. A build is reused only if fricgen built it from the
+    same sources and LAMMPS (:func:`_built_here`); a stamp or lock in the build folder that is not a
+    regular file is refused (LammpsError), never waited on."""
+    from fricgen.derive.law import manifests
+
     folder = Path(folder).resolve()
-    cmake_lists = folder / "CMakeLists.txt"
-    if not cmake_lists.is_file():
+    if not (folder / "CMakeLists.txt").is_file():
         raise LammpsError(f"{folder} holds no CMakeLists.txt: generate the plugin first (fricgen lammps LAW)")
     law = next(p.stem.removeprefix("pair_fricgen_") for p in folder.glob("pair_fricgen_*.cpp"))
-    digest = sources_hash(folder, lammps)
-    build = Path(build) if build is not None else default_build_folder(law, digest)
-    plugin, stamp = build / f"fricgen_{law}.so", build / "fricgen-sources.sha256"
-    if plugin.is_file() and stamp.is_file() and stamp.read_text().strip() == digest:
+    source = verified_sources(folder, law)
+    digest = sources_hash(source, lammps)
+    flag = "--build-dir" if build is not None else "the build folder"
+    build = Path(build).resolve() if build is not None else default_build_folder(law, digest)
+    plugin, stamp, lock_file = build / f"fricgen_{law}.so", build / STAMP, build / "fricgen-build.lock"
+    for path in (stamp, lock_file):
+        _regular_or_absent(path, flag)
+    if _built_here(build, plugin, digest):
         return plugin
     cmake = _tool("cmake")
     build.mkdir(parents=True, exist_ok=True)
-    with (build / "fricgen-build.lock").open("w") as lock:
+    flags = os.O_RDWR | os.O_CREAT | os.O_NONBLOCK | getattr(os, "O_NOFOLLOW", 0) | os.O_CLOEXEC
+    try:
+        lock = os.open(lock_file, flags, 0o644)
+    except OSError as error:
+        raise LammpsError(f"{flag}: cannot open {lock_file}: {error.strerror or error}") from None
+    try:
+        if not stat.S_ISREG(os.fstat(lock).st_mode):
+            raise LammpsError(f"{flag}: {lock_file} is not a regular file, not fricgen's lock: give another build folder")
         fcntl.flock(lock, fcntl.LOCK_EX)  # one build at a time in a folder (parallel test sessions)
-        if plugin.is_file() and stamp.is_file() and stamp.read_text().strip() == digest:
+        if _built_here(build, plugin, digest):
             return plugin
         stamp.unlink(missing_ok=True)
-        _cmake(cmake, folder, build, lammps, jobs)
+        _cmake(cmake, source, build, lammps, jobs)
         if not plugin.is_file():
             raise LammpsError(f"the build did not produce {plugin}")
         stamp.write_text(digest + "\n")
+        manifests.record(build, {plugin.name: manifests.sha256(plugin.read_bytes()), STAMP: manifests.sha256((digest + "\n").encode())})
+    except manifests.UntrustedFile as error:
+        raise LammpsError(str(error)) from None
+    finally:
+        os.close(lock)
     return plugin
 
 

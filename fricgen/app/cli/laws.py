@@ -76,25 +76,24 @@ def verify(args: argparse.Namespace) -> int:
 
     named = set(args.laws)
     calculi = CALCULI if args.calculus == "all" else (args.calculus,)
+    laws = [load_law(folder / f"{name}.toml") for folder, names in laws_by_catalogue(args.laws).items() for name in names]
+    jobs = [(law, c) for law in laws for c in calculi if c in law.calculi or law.name in named]  # every law read before any proof
+    if not jobs:  # every law skipped: exit 0 would say that something was verified
+        raise ConfigError("--calculus", f"no law here has the {args.calculus} calculus: nothing was verified", "name a law to verify it")
+    for law in laws:
+        for calculus in (c for c in calculi if c not in law.calculi and law.name not in named):
+            why = f"not among the law's calculi {list(law.calculi)} (name the law to verify it anyway)"
+            print(f"skipped {law.name}/{calculus}: {why}", file=sys.stderr)
     reports = []
-    for folder, names in laws_by_catalogue(args.laws).items():
-        for name in names:
-            law = load_law(folder / f"{name}.toml")
-            for calculus in calculi:
-                if calculus not in law.calculi and name not in named:
-                    print(
-                        f"skipped {name}/{calculus}: not among the law's calculi {list(law.calculi)} (name the law to verify it anyway)",
-                        file=sys.stderr,
-                    )
-                    continue
-                report = verify(derive_noise(law, calculus))
-                reports.append(report)
-                if not args.json:
-                    status = "verified" if report.verified else "FAILED"
-                    form = "closed form" if report.closed_form else "integral (F-22)"
-                    failed = [k for k, v in report.checks.items() if not v]
-                    extra = f"  failed: {failed} {report.details}" if failed else ""
-                    print(f"{name:20s} {calculus:13s} {form:16s} {status:9s} {report.seconds:6.2f} s{extra}", flush=True)
+    for law, calculus in jobs:
+        report = verify(derive_noise(law, calculus))
+        reports.append(report)
+        if not args.json:
+            status = "verified" if report.verified else "FAILED"
+            form = "closed form" if report.closed_form else "integral (F-22)"
+            failed = [k for k, v in report.checks.items() if not v]
+            extra = f"  failed: {failed} {report.details}" if failed else ""
+            print(f"{law.name:20s} {calculus:13s} {form:16s} {status:9s} {report.seconds:6.2f} s{extra}", flush=True)
     if args.json:
         print(dumps([r.as_dict() for r in reports]))
     return 0 if all(r.verified for r in reports) else 1
