@@ -137,19 +137,22 @@ def analyse(folder: Path) -> dict:
 def dip_figure(runs: list[dict], path: Path) -> Path:
     """The dip ratio of each frame against time, one panel for runs from a lattice, one for cross-starts.
 
-    A frame with no second maximum 0.2 away (no dip) is drawn at 1 with an open marker; the dashed
-    line is the strict threshold 0.5.
+    Colour: the model; line style: the seed (1 solid, 2 dashed, 3 dotted). A frame with no second
+    maximum 0.2 away (no dip) is drawn at 1 with an open marker; the black dashed line is the strict
+    threshold 0.5.
     """
     figure = Figure(figsize=(10, 3.8), layout="constrained")
     panels = figure.subplots(1, 2, sharey=True)
-    titles = ("from a lattice (N = 2000, F0 = 35, phi = 0.5)", "cross-starts (time since the restart)")
+    titles = ("from a lattice (N = 2000, area fraction 0.5)", "cross-starts (time since the restart)")
+    colours = {"no noise": "C1", "consistent": "C0", "no friction": "C2"}
     for axis, title, group in zip(panels, titles, ([r for r in runs if not r["initial"]], [r for r in runs if r["initial"]])):
-        for index, run in enumerate(group):
-            colour = f"C{index}"
+        for run in group:
+            colour, style = colours[run["model"]], ("-", "--", ":")[(run["seed"] - 1) % 3]
             t = np.array([row["t"] for row in run["series"]])
             dip = np.array([np.nan if row["dip_ratio"] is None else row["dip_ratio"] for row in run["series"]])
-            label = f"{run['run']} ({run['model']})" if run["initial"] else f"{run['model']}, seed {run['seed']}"
-            axis.plot(t, dip, "-", color=colour, lw=1, label=label)
+            label = f"{run['model']}, seed {run['seed']}" if not run["initial"] else f"{run['run']}: {run['model']}"
+            label += f", F0 = {run['F0']:g}, m = {run['mass']:g}"
+            axis.plot(t, dip, style, color=colour, lw=1, label=label)
             none = np.isnan(dip)
             axis.plot(t[none], np.ones(none.sum()), "o", mfc="none", color=colour, ms=3)
         axis.axhline(mips.DIP, color="k", ls="--", lw=0.8)
