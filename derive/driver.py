@@ -96,8 +96,11 @@ def write_if_changed(path: Path, text: str) -> Written:
         pass
     except NotAFile as error:
         raise DeriveError(f"{inert(str(path))} is {error.kind}, not a file fricgen wrote: move it away, then generate again") from None
-    path.parent.mkdir(parents=True, exist_ok=True)
-    write_text_atomic(path, text)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        write_text_atomic(path, text)
+    except OSError as error:
+        raise DeriveError(f"cannot write {inert(str(path))}: {error.strerror or error}") from None
     return Written(path, "written", manifests.sha256(text.encode()))
 
 
