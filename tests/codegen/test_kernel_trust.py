@@ -167,6 +167,15 @@ def test_trusted_copies_and_a_missing_home(cache, tmp_path, monkeypatch):
         manifests.store()
 
 
+def test_the_records_live_in_the_cache_even_when_the_lemma_cache_is_off(tmp_path, monkeypatch):
+    """FRICGEN_CACHE=off switches off the lemma cache only: the records are no cache of results."""
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
+    monkeypatch.setenv(manifests.CACHE_ENV, "off")
+    assert manifests.store() == tmp_path / "xdg" / "fricgen" / "written"
+    monkeypatch.setenv(manifests.CACHE_ENV, str(tmp_path / "mine"))
+    assert manifests.store() == tmp_path / "mine" / "written"
+
+
 def test_a_lock_that_is_not_a_file_is_refused(cache, tmp_path):
     folder = tmp_path / "out"
     entry = manifests._entry(folder)
