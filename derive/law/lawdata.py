@@ -35,7 +35,16 @@ POTENTIALS = Path(__file__).with_name("potentials.py")
 MAX_LAW_FILE = 64 * 1024
 
 #: The keys of a law file and their TOML types; name and friction are required.
-LAW_KEYS = {"name": str, "friction": str, "weight": str, "calculi": list, "description": str, "reference": str, "parameters": dict}
+LAW_KEYS = {
+    "name": str,
+    "friction": str,
+    "weight": str,
+    "calculi": list,
+    "mode": str,
+    "description": str,
+    "reference": str,
+    "parameters": dict,
+}
 REQUIRED_KEYS = ("name", "friction")
 #: The keys of a parameter's table; default is required.
 PARAMETER_KEYS = {"default": (int, float), "unit": str, "description": str, "range": str}
@@ -46,6 +55,34 @@ RANGE_EXAMPLE = 'an interval such as "[0, 2]", "(0, inf)" or "[1, 3)" (brackets 
 
 class LawFileError(DeriveError, ValueError):
     """A law file that cannot be read."""
+
+
+# --- contact modes (docs/physics-modes.md) --------------------------------------------------------
+
+#: The relative motions at a contact that a law can act on, and the dimensions in which each exists:
+#: sliding (the paper's u_perp), rolling (R_eff (omega_i - omega_k) x n) and spinning
+#: (R_eff (omega_i - omega_k) . n, about the normal: a disc in the plane has no such rotation).
+CONTACT_MODES: dict[str, tuple[int, ...]] = {"sliding": (2, 3), "rolling": (2, 3), "spinning": (3,)}
+#: The mode of a law file without ``mode``.
+DEFAULT_MODE = "sliding"
+
+
+class ModeError(DeriveError, ValueError):
+    """A contact mode that does not exist, or not in the dimension asked for."""
+
+
+def mode_refusal(mode: object, dim: int | None = None) -> str:
+    """Why ``mode`` cannot be used (in ``dim`` dimensions when given), on one line; "" if it can."""
+    if not isinstance(mode, str) or mode not in CONTACT_MODES:
+        shown = repr(mode) if isinstance(mode, str) and len(mode) <= 40 else _describe(mode)
+        return f"unknown contact mode {shown}; allowed: {list(CONTACT_MODES)}"
+    if dim is not None and dim not in CONTACT_MODES[mode]:
+        where = " and ".join(f"{d}-D" for d in CONTACT_MODES[mode])
+        return f"the {mode} mode exists in {where} only, not in {dim}-D" + _WHY_NOT.get((mode, dim), "")
+    return ""
+
+
+_WHY_NOT = {("spinning", 2): ": discs in the plane spin about z, perpendicular to the normal, so (omega_i - omega_k) . n = 0"}
 
 
 @dataclass(frozen=True)
@@ -204,6 +241,8 @@ def check_law_data(data: dict, path: str | Path) -> None:
             raise LawFileError(f"{path}: calculi: unknown calculus {_describe(calculus)}; allowed: {list(CALCULI)}")
     if "calculi" in data and not data["calculi"]:
         raise LawFileError(f"{path}: calculi must not be empty; allowed: {list(CALCULI)}")
+    if "mode" in data and mode_refusal(data["mode"]):
+        raise LawFileError(f"{path}: mode: {mode_refusal(data['mode'])}")
     for key, spec in data.get("parameters", {}).items():
         name = key if key.isidentifier() else repr(key)
         if not isinstance(spec, dict):

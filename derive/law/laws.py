@@ -8,6 +8,7 @@ A law file is plain TOML (see ``derive/law/catalogue/``)::
     friction = "Min(gamma_f*u, w*kappa_f)"
     weight = "wca"            # w(r) = -dU/dr of a potential, or an expression in r
     calculi = ["ito", "stratonovich", "hk"]
+    mode = "sliding"          # the relative motion f acts on: sliding (default), rolling, spinning
 
     [parameters.gamma_f]
     default = 6.0
@@ -15,16 +16,14 @@ A law file is plain TOML (see ``derive/law/catalogue/``)::
     description = "viscous friction coefficient"
     range = "(0, inf)"        # the admissible values (the default): [ ] closed, ( ) open ends
 
-f is the magnitude of the tangential contact force (units of force) as a function of the
-tangential speed u >= 0, the centre distance r and the weight value w = w(r). Parameters are real
-numbers in their ranges (within [0, oo); the positive reals unless ``range`` says otherwise), and f
-must be >= 0, real and finite for every combination of them (fricgen.derive.law.ranges: proven by SymPy where it
-can, else checked on a grid; ``FrictionLaw.range_check`` says which). Expressions are data, never
-run: see fricgen.derive.law.expressions for their grammar (numbers, u, r, w, the parameters, pi, + - * / **, a
-list of functions, Piecewise) and size limits.
-``calculi`` lists the calculi the law claims to support (default: all three); a calculus is left
-out only with a physical reason, e.g. constant friction has f(0+) > 0, so the
-Hänggi–Klimontovich amplitude f/u diverges at u = 0.
+f is the magnitude of the friction force (units of force) as a function of the speed u >= 0 of the law's contact mode
+(``mode``; the tangential sliding speed by default, docs/physics-modes.md), the centre distance r and the weight value
+w = w(r). Parameters are real numbers in their ranges (within [0, oo); the positive reals unless ``range`` says
+otherwise), and f must be >= 0, real and finite for every combination of them (fricgen.derive.law.ranges: proven by
+SymPy where it can, else checked on a grid; ``FrictionLaw.range_check`` says which). Expressions are data, never run:
+see fricgen.derive.law.expressions for their grammar (numbers, u, r, w, the parameters, pi, + - * / **, a list of
+functions, Piecewise) and size limits. ``calculi`` lists the calculi the law claims to support (default: all three);
+one is left out only with a physical reason (constant friction has f(0+) > 0: the HK amplitude f/u diverges at u = 0).
 """
 
 from __future__ import annotations
@@ -40,7 +39,7 @@ import mpmath
 import sympy as sp
 
 from ..calculus import CALCULI
-from . import potentials
+from . import lawdata, potentials
 from .expressions import CONSTANTS, LawError, check_expression, check_parameter_name, expression_text, parse_expression, snippet, time_limit
 from .lawdata import CATALOGUE, POSITIVE, Interval, LawFileError, check_law_data, parse_range, read_law_data, source_hash, write_text_atomic
 from .ranges import check_ranges
@@ -81,6 +80,7 @@ class FrictionLaw:
         weight: w(r) as a SymPy expression in ``r``, or None when ``w`` is not used.
         weight_source: the weight as written in the law file ("wca" or an expression).
         calculi: calculi the law supports.
+        mode: the contact mode f acts on, its u the speed of that mode (fricgen.derive.noise.modes).
         source: the friction expression as written.
         source_hash: for a law read by :func:`load_law`, the source hash (fricgen.derive.law.lawdata.source_hash)
             of the very bytes it was built from; generated kernels carry it. Empty otherwise.
@@ -94,6 +94,7 @@ class FrictionLaw:
     weight: sp.Expr | None = None
     weight_source: str = ""
     calculi: tuple[str, ...] = CALCULI
+    mode: str = lawdata.DEFAULT_MODE
     description: str = ""
     reference: str = ""
     source: str = field(default="", compare=False)
@@ -118,6 +119,7 @@ def make_law(
     calculi: tuple[str, ...] | list[str] = CALCULI,
     description: str = "",
     reference: str = "",
+    mode: str = lawdata.DEFAULT_MODE,
 ) -> FrictionLaw:
     """Build and validate a law; raises :class:`LawError` naming the problem.
 
@@ -130,8 +132,11 @@ def make_law(
         weight: None, the name of a potential in :mod:`fricgen.derive.law.potentials` (w = -dU/dr), or an
             expression in r.
         calculi: the calculi the law supports.
+        mode: the contact mode the law acts on (fricgen.derive.law.lawdata.CONTACT_MODES).
     """
     _check_name(name)
+    if why := lawdata.mode_refusal(mode):
+        raise LawError(f"law {name}: mode: {why}")
     if not isinstance(parameters, (dict, tuple, list)):
         raise LawError(f"law {name}: parameters must be a table of parameter tables, got {type(parameters).__name__}")
     params = tuple(
@@ -161,6 +166,7 @@ def make_law(
         weight=weight_expr,
         weight_source=weight or "",
         calculi=tuple(c for c in CALCULI if c in calculi),
+        mode=mode,
         description=description,
         reference=reference,
         source=source,
@@ -200,8 +206,7 @@ def _check_parameter(law: str, p: Parameter) -> None:
 def _parameter_fields(law: str, key: str, spec: dict) -> dict:
     if not isinstance(spec, dict) or "default" not in spec:
         raise LawError(f"law {law}: parameter {snippet(repr(key))} needs a table with a 'default'")
-    unknown = set(spec) - {"default", "unit", "description", "range"}
-    if unknown:
+    if unknown := set(spec) - {"default", "unit", "description", "range"}:
         raise LawError(f"law {law}: parameter {snippet(repr(key))} has unknown keys {sorted(unknown)}")
     interval = spec.get("range", POSITIVE)
     if not isinstance(interval, Interval):
@@ -249,8 +254,7 @@ def validate(law: FrictionLaw) -> str:
     """
     f = law.friction
     allowed = {u, r, w, *law.symbols.values()}
-    unknown = f.free_symbols - allowed
-    if unknown:
+    if unknown := f.free_symbols - allowed:
         raise LawError(
             f"law {law.name}: unknown symbol(s) {sorted(map(str, unknown))} in f = {_short(f)}; "
             f"allowed: u, r, w and parameters {sorted(law.symbols)}"
@@ -336,6 +340,7 @@ def load_law(path: str | Path) -> FrictionLaw:
         calculi=tuple(data.get("calculi", CALCULI)),
         description=data.get("description", ""),
         reference=data.get("reference", ""),
+        mode=data.get("mode", lawdata.DEFAULT_MODE),
     )
     return dataclasses.replace(law, source_hash=digest)
 
@@ -358,6 +363,7 @@ def law_text(law: FrictionLaw) -> str:
     if law.weight_source:
         lines.append(f"weight = {quote(law.weight_source)}")
     lines.append(f"calculi = [{', '.join(quote(c) for c in law.calculi)}]")
+    lines += [f"mode = {quote(law.mode)}"] if law.mode != lawdata.DEFAULT_MODE else []  # a sliding law's text as before
     for p in law.parameters:
         if p.name in implied:
             continue
