@@ -80,8 +80,8 @@ def cache_key() -> str:
     return digest.hexdigest()
 
 
-def _entry(name: str) -> Path | None:
-    folder, key = cache_folder(), cache_key()
+def _entry(name: str, key: str) -> Path | None:
+    folder = cache_folder()
     return None if folder is None or not key else folder / f"{name}-{key[:16]}.json"
 
 
@@ -90,10 +90,12 @@ def _digest(key: str, name: str, facts: dict) -> str:
     return hashlib.sha256(payload.encode()).hexdigest()
 
 
-def read_entry(name: str) -> dict | None:
+def read_entry(name: str, key: str | None = None) -> dict | None:
     """The cached facts of ``name``, or None (no cache, no entry, not a regular file, unreadable,
-    another key or name, or a payload that does not match its sha256)."""
-    path = _entry(name)
+    another key or name, or a payload that does not match its sha256). ``key``: :func:`cache_key`
+    unless given (fricgen.derive.noise.mode_cache keys its entries on its own sources too)."""
+    key = cache_key() if key is None else key
+    path = _entry(name, key)
     if path is None:
         return None
     try:
@@ -101,19 +103,20 @@ def read_entry(name: str) -> dict | None:
         data = json.loads(raw) if len(raw) <= MAX_ENTRY else None
     except (OSError, ValueError):
         return None
-    if not isinstance(data, dict) or data.get("key") != cache_key() or data.get("name") != name or not isinstance(data.get("facts"), dict):
+    if not isinstance(data, dict) or data.get("key") != key or data.get("name") != name or not isinstance(data.get("facts"), dict):
         return None
     if data.get("sha256") != _digest(data["key"], name, data["facts"]):
         return None
     return data["facts"]
 
 
-def write_entry(name: str, facts: dict) -> Path | None:
-    """Store ``facts`` (JSON-able) under ``name`` atomically; the path, or None if not written."""
-    path = _entry(name)
+def write_entry(name: str, facts: dict, key: str | None = None) -> Path | None:
+    """Store ``facts`` (JSON-able) under ``name`` atomically (with ``key`` as in :func:`read_entry`);
+    the path, or None if not written."""
+    key = cache_key() if key is None else key
+    path = _entry(name, key)
     if path is None:
         return None
-    key = cache_key()
     text = json.dumps({"key": key, "name": name, "facts": facts, "sha256": _digest(key, name, facts)}, indent=1, sort_keys=True)
     try:
         path.parent.mkdir(parents=True, exist_ok=True)

@@ -24,6 +24,14 @@ Checks of :func:`prove` (names as in the report and in ``fricgen verify --json``
   of the kernel check (several kT, mu, w, r and parameter values, u up to 1e3 sqrt(nu kT)).
 The law-independent facts (lemma, covariance) are read from the on-disk cache of
 :mod:`fricgen.derive.noise.lemma_cache` when present, and proven (and stored) otherwise.
+
+A law on another contact mode (``mode = "rolling"`` or ``"spinning"``; docs/physics-modes.md) is
+proven the same way with that mode's map C_m and its mobility mu_m (the model's ``mobility``): the
+lemma is the mode's (:mod:`fricgen.derive.noise.mode_proofs`, cached by :mod:`.mode_cache`), in the
+dimensions where the mode exists (spinning: ``zero_current_3d`` only), and one more check,
+``contact_mode``: the engines' forces and torques are -C_m^T v_m f/u (power -f u), their noise has
+covariance kT D C_m^T C_m (``noise_covariance``), and C_m M^-1 C_m^T = mu_m x projector with mu_m
+read off and equal to the engines' formula. Sliding laws are proven and reported exactly as before.
 """
 
 from __future__ import annotations
@@ -34,7 +42,7 @@ from dataclasses import dataclass, field
 import sympy as sp
 
 from ..law.symbols import kT, mu, r, u, w
-from . import lemma_cache
+from . import lemma_cache, mode_cache
 from .derivation import Calculus, NoiseModel, branches, integral_amplitude
 from .reference import Point, reference_points, sample_problem
 
@@ -88,7 +96,8 @@ def prove(model: NoiseModel) -> Report:
     start = time.perf_counter()
     checks: dict[str, bool] = {}
     details: dict[str, str] = {}
-    scales = {dim: lemma_scale(model, dim) for dim in (3, 2)}
+    dims = mode_cache.dimensions(model.law.mode)  # (3, 2); spinning (3,)
+    scales = {dim: lemma_scale(model, dim) for dim in dims}
     a = scales[3]
     if a is None:
         checks["ode_residual"] = False
@@ -99,11 +108,19 @@ def prove(model: NoiseModel) -> Report:
         checks["ode_residual"] = all(x == 0 for x in residuals)
         if not checks["ode_residual"]:
             details["ode_residual"] = _describe_residuals(model, residuals)
-    for dim in (3, 2):
-        lemma = lemma_cache.zero_current(dim, model.calculus.value)
+    for dim in dims:
+        lemma = mode_cache.lemma(model.law.mode, dim, model.calculus.value)
         same = scales[dim] is not None and a is not None and sp.simplify(scales[dim] - a) == 0
         checks[f"zero_current_{dim}d"] = lemma.holds and checks["ode_residual"] and same
-    identities = {f"{d}d_{k}": v for d in (3, 2) for k, v in lemma_cache.covariance(d).items()}
+    if model.law.mode == "sliding":
+        identities = {f"{d}d_{k}": v for d in (3, 2) for k, v in lemma_cache.covariance(d).items()}
+    else:  # the mode's own facts (fricgen.derive.noise.mode_proofs.mode_facts), the covariance among them
+        facts = {f"{d}d_{k}": v for d in dims for k, v in mode_cache.facts(model.law.mode, d).items()}
+        identities = {k: v for k, v in facts.items() if k.endswith("noise_covariance")}
+        checks["contact_mode"] = all(facts.values())
+        details["contact_mode"] = f"{model.law.mode}: mu_m = C_m M^-1 C_m^T / projector, read off and equal to the formula"
+        if not checks["contact_mode"]:
+            details["contact_mode"] = f"{model.law.mode}: failed {[k for k, v in facts.items() if not v]}"
     checks["noise_covariance"] = all(identities.values())
     if not checks["noise_covariance"]:
         details["noise_covariance"] = f"failed: {[k for k, v in identities.items() if not v]}"
@@ -118,8 +135,9 @@ def prove(model: NoiseModel) -> Report:
 
 def lemma_scale(model: NoiseModel, dim: int = 3) -> sp.Expr | None:
     """nu kT of the model's calculus as the zero-current lemma derives it on the ``dim``-D pair phase
-    space (independently of noise.py), for the model's contact mobility; None if the lemma fails."""
-    return lemma_cache.zero_current(dim, model.calculus.value).nu_kT(model.mobility)
+    space (independently of noise.py) for the law's contact mode, for the model's contact mobility
+    (mu_m of that mode); None if the lemma fails."""
+    return mode_cache.lemma(model.law.mode, dim, model.calculus.value).nu_kT(model.mobility)
 
 
 def _reduced(expr: sp.Expr) -> sp.Expr:
