@@ -166,6 +166,28 @@ def dip_figure(runs: list[dict], path: Path) -> Path:
     return path
 
 
+def table_row(run: dict) -> str:
+    """The run's row of the tables of docs/studies/results.md (markdown)."""
+    pooled, temperature = run["pooled"], "{mean:.3f} ± {error:.3f}"
+    phases = "–" if pooled["phi_dense"] is None else f"{pooled['phi_dilute']} / {pooled['phi_dense']}"
+    cells = [
+        run["run"],
+        run["model"],
+        run["seed"],
+        run["n"],
+        f"{run['length']:g} t_R",
+        f"{len(pooled['maxima'])} ({', '.join(map(str, pooled['maxima']))}): {'bimodal' if pooled['bimodal'] else 'not bimodal'}",
+        "separated" if pooled["phase_separated"] else "not separated",
+        "–" if pooled["dip_ratio"] is None else f"{pooled['dip_ratio']:.2f}",
+        phases,
+        f"{run['frames_separated']} of {run['frames_window']}",
+        temperature.format(**run["T_trans"]),
+        temperature.format(**run["T_rot"]),
+        f"{run['seconds']:.0f} s",
+    ]
+    return "| " + " | ".join(str(cell) for cell in cells) + " |"
+
+
 def main(argv: list[str] | None = None) -> None:
     """Analyse the folders given (default: out/fig7/*/), write fig7.json and fig7_dip_vs_time.png."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -185,12 +207,7 @@ def main(argv: list[str] | None = None) -> None:
     (args.results / "fig7.json").write_text(json.dumps(record, indent=1) + "\n")
     dip_figure(runs, args.results / "fig7_dip_vs_time.png")
     for run in runs:
-        pooled = run["pooled"]
-        print(
-            f"{run['run']:28s} {run['model']:11s} maxima {pooled['maxima']} strict {pooled['phase_separated']} "
-            f"dip {pooled['dip_ratio']} phi {pooled['phi_dilute']}/{pooled['phi_dense']} "
-            f"frames bimodal {run['frames_bimodal']}/{run['frames_window']} strict {run['frames_separated']}/{run['frames_window']}"
-        )
+        print(table_row(run))
     print("not finished:", pending)
 
 
