@@ -27,7 +27,7 @@ from fricgen.langevin import (
 
 from .helpers import arrays, collision, config, passive
 
-LAWS = ["linear", "coulomb", "coulomb_newton", "viscous_cubic", "smooth_coulomb"]
+LAWS = ["linear", "coulomb", "coulomb_newton", "viscous_cubic", "smooth_coulomb", "stribeck"]
 
 
 def energy(simulation):

@@ -30,7 +30,7 @@ def test_reports_carry_the_lemmas_nu_kT_and_the_kernel_error(reports):
     expected = {"ito": kT * mu, "stratonovich": kT * mu / 2, "hk": 0}
     for (name, calculus), report in reports.items():
         assert sp.sympify(report.details["nu_kT"], locals={"kT": kT, "mu": mu}) == expected[calculus], name
-        assert float(report.details["kernel_max_rel_error"]) < 1e-8, (name, calculus)
+        assert float(report.details["kernel_max_rel_error"]) < 1e-10, (name, calculus)
         assert "kernel_max_rel_error" in report.as_dict()["details"]
 
 
