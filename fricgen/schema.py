@@ -25,6 +25,14 @@ STEP_LIMIT = 2**62
 """Most steps a run may take: step counters and noise keys are 64-bit integers."""
 
 
+SCALES = (1e-6, 1e6)
+"""The magnitudes a scale of a run may take (a radius, a mass, kT, a mobility), in fricgen's units
+(sigma = 1, kT = 1, m = 1, t0): the engines and the kernels are checked at scales of order one, and
+six decades either way keep every product and quotient the engines form (r^2 / dt, kT / mu, a force
+times a radius) far from overflow, underflow and subnormal numbers. A force may be 0 or up to
+``SCALES[1]`` in magnitude. Beyond this, results could not be stood behind: refused, one line."""
+
+
 def machine_memory() -> float:
     """Physical memory of this machine in bytes (inf where the system does not tell)."""
     try:
@@ -70,6 +78,30 @@ class Section:
         for name in names:
             value = getattr(self, name)
             self.require(math.isfinite(value) and value >= 0, name, f"must be >= 0 and finite, got {value}", "give 0 or more")
+
+    def require_scale(self, *names: str) -> None:
+        """Each named field is a finite number within :data:`SCALES` (1e-6 to 1e6)."""
+        low, high = SCALES
+        for name in names:
+            value = getattr(self, name)
+            self.require(
+                math.isfinite(value) and low <= value <= high,
+                name,
+                f"must be within [{low:g}, {high:g}] (the scales fricgen is checked on), got {value}",
+                "give a value within that range (change units if needed)",
+            )
+
+    def require_bounded(self, name: str, values: tuple[float, ...] | float) -> None:
+        """Each of ``values`` (field ``name``, e.g. a force's components) is finite and at most
+        ``SCALES[1]`` (1e6) in magnitude."""
+        high = SCALES[1]
+        for value in values if isinstance(values, tuple) else (values,):
+            self.require(
+                math.isfinite(value) and abs(value) <= high,
+                name,
+                f"must be finite and at most {high:g} in magnitude (the scales fricgen is checked on), got {value}",
+                "give a smaller value (change units if needed)",
+            )
 
     def require_memory(self, name: str, needed: float, what: str) -> None:
         """``what`` (e.g. "100 particles") fits this machine's memory with ``needed`` bytes (an estimate made

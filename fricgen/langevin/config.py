@@ -84,6 +84,7 @@ class Thermostat(Section):
 
     def __post_init__(self):
         self.require_positive("kT", "dt")
+        self.require_scale("kT")
         self.require_nonnegative("gamma", "gamma_rot")
 
 
@@ -96,6 +97,7 @@ class Active(Section):
 
     def __post_init__(self):
         self.require(math.isfinite(self.force), "force", f"must be finite, got {self.force}", "give F0 in kT/sigma")
+        self.require_bounded("force", self.force)
 
 
 @dataclass(frozen=True)
@@ -108,6 +110,7 @@ class Bulk(Section):
     def __post_init__(self):
         self.require(len(self.force) in (0, 2, 3), "force", f"needs 2 or 3 components, got {len(self.force)}", "give [Fx, Fy(, Fz)]")
         self.require(all(map(math.isfinite, self.force)), "force", "must be finite", "give the force in kT/sigma")
+        self.require_bounded("force", self.force)
 
     @property
     def vector(self) -> tuple[float, float, float]:

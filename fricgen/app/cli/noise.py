@@ -2,17 +2,25 @@
 
 :class:`NoiseQuery` is the command's input, each number checked once (keys are the flags). The
 result is refused (ConfigError, exit status 2) when a value the kernels return is not finite, for
-inputs that overflow double precision (``--param gamma_f=1e308``), so JSON output stays JSON.
+inputs that overflow double precision (``--param gamma_f=1e308``), so JSON output stays JSON, and
+when it underflows (a subnormal f or D, or D = 0 where f != 0). ``--mu`` and ``--kT`` must lie within
+fricgen.schema.SCALES (1e-6 to 1e6; beyond, kernels with noise tables lose accuracy or, at subnormal
+values, never end), parameters are 0 or at least :data:`SMALLEST_PARAMETER` in magnitude.
 """
 
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass, field
 
 from ...errors import ConfigError
 from ...kernels import load_law_kernels
 from ...schema import Section
+
+#: Smallest magnitude of a law parameter of ``fricgen noise`` besides 0: a product of two stays a
+#: normal double (no underflow to subnormal numbers or to 0); an overflow shows as inf and is refused.
+SMALLEST_PARAMETER = 1e-150
 
 
 @dataclass(frozen=True)
@@ -37,12 +45,18 @@ class NoiseQuery(Section):
             self.w is None or (math.isfinite(self.w) and self.w >= 0), "w", f"must be >= 0 and finite, got {self.w}", "give w >= 0"
         )
         self.require_positive("mu", "kT")
+        self.require_scale("mu", "kT")
 
 
 def evaluate(law: str, calculus: str, query: NoiseQuery, parameters: dict[str, float]) -> dict:
     """D and f at each speed, with the contact (w, r, mu, kT) and the law's parameters."""
     kernels = load_law_kernels(law)
     params = kernels.parameters(**parameters)
+    for name, value in parameters.items():
+        if 0 < abs(value) < SMALLEST_PARAMETER:
+            raise ConfigError(
+                f"--param {name}", f"{value:g} is neither 0 nor at least {SMALLEST_PARAMETER:g} in magnitude", "give a larger value"
+            )
     amplitude = kernels.noise_amplitude(calculus)
     if kernels.has_weight and query.r is None and query.w is None:
         raise ConfigError("--r", f"law {law} has a weight w(r): give --r R (centre distance) or --w W (weight value)")
@@ -59,6 +73,13 @@ def evaluate(law: str, calculus: str, query: NoiseQuery, parameters: dict[str, f
                 name,
                 f"is {bad[1]} at u = {bad[0]:g} (w = {w:g}): the result overflows double precision",
                 "give smaller --u, --w (or larger --r), --kT or --param values",
+            )
+    for x, fx, dx in zip(query.u, f, d):
+        if 0 < abs(dx) < sys.float_info.min or 0 < abs(fx) < sys.float_info.min or (dx == 0 and fx != 0):
+            raise ConfigError(
+                "D",
+                f"underflows at u = {x:g} (f = {fx:g}, D = {dx:g}): below the smallest normal double",
+                "give larger --param, --w (or smaller --r), --u or --kT values",
             )
     return {
         "law": law,

@@ -24,6 +24,8 @@ EXAMPLES = Path(__file__).with_name("examples")
 
 #: The observables a run can tabulate (fricgen.app.run.observables writes them).
 OBSERVABLES = ("temperatures", "velocity_profile")
+#: Most slabs of the velocity profile (each is two columns of its table, every period).
+PROFILE_BINS = 10_000
 #: The kinds of run that a study analyses (:attr:`RunConfig.kinds`; fricgen.app.run.registry).
 KINDS = ("slit_flow", "active")
 
@@ -69,6 +71,7 @@ class System(Section):
     def __post_init__(self):
         self.require(self.dimension in (2, 3), "dimension", f"must be 2 or 3, got {self.dimension}", "set dimension = 2 or 3")
         self.require_positive("radius", "mass")
+        self.require_scale("radius", "mass")
         self.require(
             self.start in ("lattice", "random"), "start", f"must be 'lattice' or 'random', got {self.start!r}", 'set start = "lattice"'
         )
@@ -150,7 +153,12 @@ class Output(Section):
     def __post_init__(self):
         for name in self.observables:
             self.require(name in OBSERVABLES, "observables", f"unknown observable {name!r}", f"choose from {list(OBSERVABLES)}")
-        self.require(self.profile_bins >= 1, "profile_bins", f"must be >= 1, got {self.profile_bins}", "give the number of slabs along y")
+        self.require(
+            1 <= self.profile_bins <= PROFILE_BINS,
+            "profile_bins",
+            f"must be >= 1 and at most {PROFILE_BINS}, got {self.profile_bins}",
+            "give the number of slabs along y",
+        )
 
 
 @dataclass(frozen=True)

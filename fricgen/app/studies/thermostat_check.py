@@ -30,6 +30,8 @@ from ...schema import Section
 DEFAULT_N, DEFAULT_PHI = {2: 256, 3: 216}, {2: 0.6, 3: 0.3}
 #: The spheres of the check: radius and mass (I = 2/5 m R^2).
 RADIUS, MASS = 0.5, 1.0
+#: Blocks of the temperatures' standard errors (two samples per block at least).
+BLOCKS = 20
 
 
 @dataclass(frozen=True)
@@ -60,6 +62,13 @@ class PassiveCheck(Section):
         self.require(self.every is None or self.every >= 1, "every", f"must be >= 1, got {self.every}", "give the steps between samples")
         self.require_steps("total_time", self.total_time / self.thermostat.dt)
         self.require(self.steps >= 20, "total_time", f"{self.total_time} t0 is under 20 steps of dt", "give a longer time")
+        samples, needed = (self.steps - self.steps // 10) // self.sample_period, 2 * BLOCKS
+        self.require(
+            samples >= needed,
+            "total_time",
+            f"{self.total_time:g} t0 gives {samples} samples, under the {needed} that {BLOCKS} error blocks need",
+            f"give at least {math.ceil(needed * self.sample_period * self.thermostat.dt / 0.9 * 1.01 * 100) / 100:g}",
+        )
         n, phi, dim = self.size, self.fraction, self.dim
         densest, lattice = CLOSE_PACKING[dim], lattice_limit(n, dim)
         self.require(phi < densest, "phi", f"{phi:g} is impossible: close packing is {densest:.4f} in {dim}-D", "give a smaller value")
@@ -83,6 +92,11 @@ class PassiveCheck(Section):
     @property
     def steps(self) -> int:
         return int(round(self.total_time / self.thermostat.dt))
+
+    @property
+    def sample_period(self) -> int:
+        """Steps between samples: ``every``, else 0.05 t0."""
+        return self.every or max(1, int(round(0.05 / self.thermostat.dt)))
 
     @property
     def size(self) -> int:
@@ -141,16 +155,16 @@ def passive_run(
     ``observers`` are called after every chunk of the equilibration and of the sampling; ``law``: the
     law's kernels (:func:`fricgen.load_law`), by default looked up by ``check.law.name``."""
     start = time.perf_counter()
-    kT, dt, dim = check.thermostat.kT, check.thermostat.dt, check.dim
+    kT, dim = check.thermostat.kT, check.dim
     particles = Particles.spheres(check.size, RADIUS, MASS)
     state = lattice_state(particles, dim, check.fraction, kT=kT, seed=check.seed)
     simulation = Simulation(check.langevin(), particles, state, law)
     steps = check.steps
-    every = check.every or max(1, int(round(0.05 / dt)))
+    every = check.sample_period
     simulation.run(steps // 10, every=steps // 10 or 1, observers=observers)  # equilibration from the lattice start
     sampler = Sampler(particles)
     simulation.run(steps - steps // 10, every=every, observers=[sampler, *observers])
-    trans, rot = block_estimate(sampler.trans), block_estimate(sampler.rot)
+    trans, rot = block_estimate(sampler.trans, BLOCKS), block_estimate(sampler.rot, BLOCKS)
     kl_trans, kl_rot = kl_divergence(sampler.scaled_velocities()), kl_divergence(sampler.scaled_spins())
     passed = (
         abs(trans.mean - kT) <= check.z_limit * trans.error
