@@ -13,6 +13,7 @@ configuration, 130 stopped by Ctrl-C.
 
 from __future__ import annotations
 
+import os
 import shlex
 import sys
 import time
@@ -28,6 +29,7 @@ from ...langevin.simulation import Simulation
 from ...langevin.trajectory import GSDWriter, load_checkpoint, save_checkpoint, truncate_trajectory
 from ...schema import differences
 from .build import build, check
+from .checkpoints import check_checkpoint
 from .config import OBSERVABLES, RunConfig, load_config, parse_override, resolve_source
 from .observables import Periodic, observable_table, read_table, series_summary, truncate_table
 from .outputs import CHECKPOINT, CONFIG, SUMMARY, TRAJECTORY, check_folder, dumps
@@ -101,17 +103,41 @@ def _plan(config: RunConfig, command: list[str], out: str | None, resume: str | 
     if out and Path(out).resolve() != checkpoint.parent.resolve():
         raise ConfigError("--out", f"{out} is not the folder of the checkpoint {checkpoint}", "leave --out away when resuming")
     check_folder(checkpoint.parent, "--resume")
+    check_checkpoint(checkpoint)
     fresh = build(config, laws)
     try:
         simulation = load_checkpoint(checkpoint, law=fresh.kernels)
     except ConfigError:  # a checkpoint of another version of the law
         raise
-    except (OSError, ValueError, KeyError) as error:  # a file that is no checkpoint, or one of another version
+    except (OSError, ValueError, KeyError, TypeError) as error:  # a file that is no checkpoint, or one of another version
         raise ConfigError(
             "--resume", f"cannot read the checkpoint {checkpoint}: {error}", "give a checkpoint.npz written by fricgen run"
         ) from error
     _check_resume(config, simulation, fresh)
+    _check_outputs(checkpoint.parent, simulation.state.step)
     return Plan(config, simulation, checkpoint.parent, True, command)
+
+
+def _check_outputs(folder: Path, step: int) -> None:
+    """The files a resume continues (the trajectory, the tables) can be read back to ``step``: a
+    damaged one is refused before anything in the folder changes."""
+    import gsd.hoomd
+
+    path = folder / TRAJECTORY
+    try:
+        if path.exists():
+            with gsd.hoomd.open(str(path), "r") as trajectory:
+                len(trajectory)
+        for name in OBSERVABLES:
+            path = folder / f"{name}.csv"
+            if path.exists():
+                _, rows = read_table(path)
+                if rows.size and rows[:, 0].min() > step:
+                    raise ValueError(f"its first row is after step {step}")
+    except Exception as error:  # whatever a damaged file makes its reader raise
+        raise ConfigError(
+            "--resume", f"{path} is damaged ({' '.join(str(error).split()) or type(error).__name__})", "start a new run with another --out"
+        ) from error
 
 
 def _check_resume(config: RunConfig, resumed: Simulation, fresh: Simulation) -> None:
@@ -121,6 +147,13 @@ def _check_resume(config: RunConfig, resumed: Simulation, fresh: Simulation) -> 
     a, b = resumed.particles, fresh.particles
     same = a.radius.size == b.radius.size and np.array_equal(resumed.state.box, fresh.state.box)
     same = same and all(np.array_equal(getattr(a, k), getattr(b, k)) for k in ("radius", "mass", "mobile"))
+    walls = ~b.mobile
+    if same and walls.any() and not np.array_equal(resumed.state.position[walls], fresh.state.position[walls]):
+        raise ConfigError(
+            "walls",
+            "the checkpoint's wall spheres stand elsewhere than this configuration's (another half_width, roughness or spacing)",
+            "resume with the same [walls]",
+        )
     if not same:
         raise ConfigError(
             "system",
@@ -186,20 +219,32 @@ def execute(plan: Plan, as_json: bool = False) -> int:
         )
         return 130
     summary = summarize(config, simulation, folder, time.perf_counter() - clock, studies)
-    (folder / SUMMARY).write_text(dumps(summary))
+    temporary = folder / f".{SUMMARY}.tmp"
+    temporary.write_text(dumps(summary))
+    os.replace(temporary, folder / SUMMARY)
     print(dumps(summary) if as_json else _describe(summary, folder, studies))
     return 0
 
 
 def _continue_from(folder: Path, step: int) -> None:
-    """Drop what was written after the checkpoint (a resume from a periodic checkpoint) and the
-    summary of an earlier end."""
-    (folder / SUMMARY).unlink(missing_ok=True)
+    """Drop what was written after the checkpoint (a resume from a periodic checkpoint); the summary
+    of an earlier end is kept as ``summary-<its step>.json`` (never deleted)."""
+    if (folder / SUMMARY).exists():
+        (folder / SUMMARY).rename(_free_name(folder, f"summary-{step}", ".json"))
     if (folder / TRAJECTORY).exists():
         truncate_trajectory(folder / TRAJECTORY, step)
     for name in OBSERVABLES:
         if (folder / f"{name}.csv").exists():
             truncate_table(folder / f"{name}.csv", step)
+
+
+def _free_name(folder: Path, stem: str, suffix: str) -> Path:
+    """``folder/stem+suffix``, or with ``-2``, ``-3``, ... the first that does not exist."""
+    path, count = folder / f"{stem}{suffix}", 1
+    while path.exists() or path.is_symlink():
+        count += 1
+        path = folder / f"{stem}-{count}{suffix}"
+    return path
 
 
 def summarize(config: RunConfig, simulation: Simulation, folder: Path, seconds: float, studies: Sequence[Study] = ()) -> dict:
