@@ -15,6 +15,7 @@ import dataclasses
 import difflib
 import itertools
 import json
+import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -24,6 +25,9 @@ from ...schema import Section, structure, unknown_key
 from ..run.config import EXAMPLES, RunConfig, example_names, read_toml
 
 KEYS = ("base", "set", "grid", "plot")
+#: Most points of a sweep: each is checked (its configuration built) before anything runs, and each
+#: is a folder of its own; a larger grid is refused at once, before it is planned.
+MAX_POINTS = 10_000
 SECTIONS = tuple(f.name for f in dataclasses.fields(RunConfig))
 #: What a point's folder name may hold (anything else in a value becomes "-").
 SAFE = re.compile(r"[^A-Za-z0-9_.+-]")
@@ -116,6 +120,9 @@ def load_sweep(source: str) -> Sweep:
         _check_plot(plot, axes)
     settings = tuple(setting(key, value) for key, value in _overrides("set", data.get("set", {})).items())
     name = path.stem.removesuffix("_sweep") if path.parent == EXAMPLES else path.stem
+    count = math.prod(len(axis.values) for axis in axes)
+    if count > MAX_POINTS:
+        raise ConfigError("grid", f"has {count:.3g} points, more than a sweep runs ({MAX_POINTS})", "give fewer values, or split the sweep")
     sweep = Sweep(name, base, settings, axes, plot)
     names = [point.name for point in sweep.points()]
     if len(set(names)) < len(names):

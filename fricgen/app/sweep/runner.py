@@ -31,7 +31,7 @@ from tqdm import tqdm
 
 from ...errors import ConfigError
 from ..run.outputs import CONFIG, check_folder, dumps
-from ..run.runner import check_run
+from ..run.runner import RUN_FILES, check_run
 from .config import Point, Sweep, flatten, load_sweep
 from .results import phase_diagram, result_row, write_table
 from .task import finished, folder_state, run_point
@@ -106,6 +106,8 @@ def _check_point(sweep: Sweep, point: Point, folder: Path, laws: tuple[str, ...]
         if folder_state(folder, config.run.steps) == "done":
             _check_finished(folder, config.as_dict())
             return None
+        if any((folder / name).exists() or (folder / name).is_symlink() for name in RUN_FILES):
+            _check_finished(folder, config.as_dict(), "an unfinished run")  # the point's task resumes or restarts it
     except ConfigError as error:
         raise ConfigError(f"point {point.name}: {error.key}", error.problem, error.fix) from error
     return {
@@ -118,12 +120,20 @@ def _check_point(sweep: Sweep, point: Point, folder: Path, laws: tuple[str, ...]
     }
 
 
-def _check_finished(folder: Path, wanted: dict) -> None:
-    """A finished point's folder holds a run of this configuration (its config.json)."""
+def _check_finished(folder: Path, wanted: dict, what: str = "a finished run") -> None:
+    """A point's folder that holds a run (finished, or files of one that is not) holds a run of this
+    configuration (its config.json): the files of any other run (another sweep's, a run of the
+    user's) are never resumed over, restarted over or deleted."""
     try:
         stored = json.loads((folder / CONFIG).read_text())
     except (OSError, ValueError):
-        stored = {}
+        stored = None
+    if not isinstance(stored, dict):
+        raise ConfigError(
+            "--out",
+            f"{folder} holds files of a run without its {CONFIG} ({what} of another command?)",
+            "give another --out, or move them away",
+        )
     stored.pop("command", None)
     there, here = flatten(stored), flatten(json.loads(dumps(wanted)))
     differing = [key for key in dict.fromkeys([*here, *there]) if here.get(key) != there.get(key)]
@@ -131,7 +141,7 @@ def _check_finished(folder: Path, wanted: dict) -> None:
         key = differing[0]
         raise ConfigError(
             key,
-            f"{folder} holds a finished run with {there.get(key)!r}, not {here.get(key)!r}",
+            f"{folder} holds {what} with {there.get(key)!r}, not {here.get(key)!r}",
             "give another --out, or delete that folder",
         )
 
@@ -147,16 +157,43 @@ def _client(scheduler: str | None, workers: int):
         with cluster, Client(cluster) as client:
             yield client
         return
-    try:
-        client = Client(scheduler, timeout=CONNECT_TIMEOUT)
-    except (OSError, TimeoutError, ValueError) as error:
-        raise ConfigError(
-            "--scheduler",
-            f"cannot reach {scheduler}: {error}",
-            "start `dask scheduler` and `dask worker ADDRESS`, or leave --scheduler away",
-        ) from error
-    with client:
+    with _connect(scheduler) as client:
         yield client
+
+
+def _connect(scheduler: str):
+    """A client of the scheduler at ``scheduler`` within CONNECT_TIMEOUT seconds, or ConfigError.
+
+    Dask's own timeout bounds the TCP connection, not the handshake: a server that accepts and never
+    answers would hold ``Client()`` forever. So the client is made in a daemon thread that this one
+    waits for with a deadline (in short steps, so Ctrl-C is seen at once), and is abandoned after it.
+    """
+    import threading
+
+    from distributed import Client
+
+    made: dict = {}
+
+    def connect() -> None:
+        try:
+            made["client"] = Client(scheduler, timeout=CONNECT_TIMEOUT)
+        except Exception as error:  # reported below, in the waiting thread
+            made["error"] = error
+
+    fix = "start `dask scheduler` and `dask worker ADDRESS`, or leave --scheduler away"
+    thread = threading.Thread(target=connect, name="fricgen-sweep-connect", daemon=True)
+    thread.start()
+    deadline = time.monotonic() + CONNECT_TIMEOUT
+    while thread.is_alive() and time.monotonic() < deadline:
+        thread.join(0.1)
+    if thread.is_alive():
+        raise ConfigError("--scheduler", f"{scheduler} did not answer as a Dask scheduler within {CONNECT_TIMEOUT:g} s", fix)
+    error = made.get("error")
+    if isinstance(error, OSError | TimeoutError | ValueError):
+        raise ConfigError("--scheduler", f"cannot reach {scheduler}: {error}", fix) from error
+    if error is not None:
+        raise error
+    return made["client"]
 
 
 def _run(client, specs: list[dict], total: int) -> dict[str, dict]:
