@@ -142,7 +142,7 @@ def _bcd(args: argparse.Namespace) -> int:
     values = {name: getattr(args, name) for name in _rod_fields()}
     with named_by_flags(_rod_flags()):
         config = rod_config(**{name: dict(value) if isinstance(value, list) else value for name, value in values.items()})
-        summary = study(Study(config, args.time, args.equilibrate, args.extrapolate), Path(args.out))
+        summary = study(Study(config, args.time, args.equilibrate, args.extrapolate), Path(args.out), args.force)
     if args.json:
         print(dumps(summary))
     else:
@@ -171,9 +171,10 @@ ROD_HELP = {
     "pair": "a generated pair potential V(r) between neighbours instead of the sticky contact (e.g. wca)",
     "pair_params": "its parameters",
     "pair_range": "gap beyond sigma where the pair potential ends (< sigma)",
-    "dt": "time step (bias O(sqrt(dt)))",
+    "dt": "time step (bias O(dt) with the bridge layer, O(sqrt(dt)) with merge)",
     "seed": "noise seed",
     "start_sweeps": "Monte Carlo sweeps of the equilibrium start",
+    "contact_layer": "how a step ends collisions: bridge (Brownian-bridge push, O(dt)), reflect (elastic) or merge (BCD's, O(sqrt(dt)))",
     "replicas": "independent rings run in parallel, the samples of the errors",
     "bins": "bins over one wavelength",
     "gap_width": "bin width of the gap histogram (contact density)",
@@ -304,6 +305,7 @@ def parser() -> argparse.ArgumentParser:
     bcd.add_argument("--equilibrate", type=float, default=0.25, help="BCD time after the Monte Carlo start, before sampling (default 0.25)")
     bcd.add_argument("--extrapolate", action="store_true", help="also run at dt/4 and extrapolate to dt = 0 in sqrt(dt)")
     bcd.add_argument("--out", default="fricgen-bcd", metavar="DIR", help="output folder (default fricgen-bcd)")
+    bcd.add_argument("--force", action="store_true", help="replace the result that --out holds already")
     bcd.add_argument("--json", action="store_true", help="print the summary as JSON")
     bcd.set_defaults(run=_bcd)
     add_lammps_command(commands)
@@ -317,13 +319,30 @@ def main(argv: list[str] | None = None) -> int:
         args = parser().parse_args(words)
         prog = f"fricgen {args.command}"
         with laws.law_search(args):
-            return args.run(args)
+            status = args.run(args)
+        sys.stdout.flush()  # a closed stdout shows here, not in the interpreter's exit
+        return status
     except UsageError as error:
         return fail(error.prog, error, 2)
     except (FricgenError, DeriveError) as error:
         return fail(prog, error, getattr(error, "exit_status", 2))
     except KeyboardInterrupt:
         return fail(prog, "interrupted", 130)
+    except BrokenPipeError:
+        return _closed_stdout(prog)
+
+
+def _closed_stdout(prog: str) -> int:
+    """The reader of stdout went away (``fricgen ... --json | head -c0``): what was computed is
+    lost to it, which is its choice; say so on one line, exit 2, and point stdout at /dev/null so
+    that the interpreter's final flush does not raise BrokenPipeError again."""
+    import os
+
+    try:
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    except (OSError, ValueError):  # no real file behind sys.stdout (captured output)
+        pass
+    return fail(prog, "stdout was closed before the output was written", 2)
 
 
 if __name__ == "__main__":

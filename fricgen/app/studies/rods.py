@@ -3,16 +3,19 @@ theory, write the profile (CSV), a plot against the theory (PNG) and a summary (
 
 Everything that can be checked is checked before the Monte Carlo start: the :class:`Study` (times,
 replicas, gap bins), the output folder and the exact theory (the field, the pair potential, sigma on
-the theory's grid), which is computed first."""
+the theory's grid), which is computed first. A folder that holds a result already is refused unless
+``--force``; the new files are written beside the old ones and renamed over them at the end."""
 
 from __future__ import annotations
 
+import os
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
+from ...errors import ConfigError
 from ...rods import (
     Neighbours,
     RodConfig,
@@ -29,6 +32,8 @@ from ...schema import Section
 from ..run.outputs import check_folder
 
 REFINEMENT = 4  # --extrapolate: a second run at dt / 4
+#: The files a study writes into its folder.
+OUTPUTS = ("profile.csv", "profile.png")
 
 
 @dataclass(frozen=True)
@@ -58,10 +63,26 @@ def _sample(config: RodConfig, duration: float, equilibration: float) -> RodProf
     return simulation.run(max(1, round(duration / config.numerics.dt)))
 
 
-def study(plan: Study, out: Path) -> dict:
-    """Run, compare and write ``profile.csv``, ``profile.png`` into ``out`` and return the summary."""
+def study(plan: Study, out: Path, force: bool = False) -> dict:
+    """Run, compare and write ``profile.csv``, ``profile.png`` into ``out`` and return the summary.
+
+    Args:
+        plan: the study.
+        out: the output folder; one that holds a result already is refused unless ``force``.
+        force: replace the result in ``out``.
+
+    Returns:
+        The summary (deviations from the exact theory, steps, seconds, the configuration).
+
+    Raises:
+        ConfigError: ``--out`` holds a result (without ``force``), or ``--time`` was too short for
+            every bin's error (chi^2 would be infinite); nothing is written then.
+    """
     config, duration, equilibration, extrapolate = plan.config, plan.time, plan.equilibrate, plan.extrapolate
     check_folder(out, "--out")
+    taken = [name for name in OUTPUTS if (out / name).exists() or (out / name).is_symlink()]
+    if taken and not force:
+        raise ConfigError("--out", f"{out} already holds a result ({', '.join(taken)})", "give another --out, or --force to replace it")
     exact = exact_profile(config)
     start = time.perf_counter()
     measured = _sample(config, duration, equilibration)
@@ -69,8 +90,16 @@ def study(plan: Study, out: Path) -> dict:
         fine = _sample(config.replace(dt=config.numerics.dt / REFINEMENT), duration, equilibration)
         measured = extrapolate_to_zero_dt(measured, fine, REFINEMENT)
     seconds = time.perf_counter() - start
+    with np.errstate(divide="ignore", invalid="ignore"):
+        compared = deviations(measured, exact, contact=config.model.hard_rods)
+    if not np.isfinite(compared["chi2_per_dof"]):
+        raise ConfigError(
+            "--time",
+            f"{duration:g} per replica left bins without scatter between replicas: chi^2 cannot be estimated; nothing was written",
+            "give a longer --time",
+        )
     summary = {
-        **deviations(measured, exact, contact=config.model.hard_rods),
+        **compared,
         "steps": measured.steps,
         "seconds": seconds,
         "extrapolated_to_zero_dt": extrapolate,
@@ -81,8 +110,18 @@ def study(plan: Study, out: Path) -> dict:
         baxter = _baxter(config, exact)
         summary["representation_error_max"] = float(np.max(np.abs(exact.rho - baxter.rho)))
     out.mkdir(parents=True, exist_ok=True)
-    _write_csv(measured, exact, out / "profile.csv")
-    _plot(measured, exact, baxter, config, out / "profile.png")
+    written = []
+    try:  # beside the old result, then each renamed over it: a stop leaves old files or new ones, never half of one
+        for name, write in zip(
+            OUTPUTS, (lambda path: _write_csv(measured, exact, path), lambda path: _plot(measured, exact, baxter, config, path))
+        ):
+            written.append(out / f".new-{name}")
+            write(written[-1])
+        for name, path in zip(OUTPUTS, written):
+            os.replace(path, out / name)
+    finally:
+        for path in written:
+            path.unlink(missing_ok=True)
     return summary
 
 
