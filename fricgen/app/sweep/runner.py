@@ -107,7 +107,8 @@ def _check_point(sweep: Sweep, point: Point, folder: Path, laws: tuple[str, ...]
             _check_finished(folder, config.as_dict())
             return None
         if any((folder / name).exists() or (folder / name).is_symlink() for name in RUN_FILES):
-            _check_finished(folder, config.as_dict(), "an unfinished run")  # the point's task resumes or restarts it
+            # its task resumes it (to more steps, maybe) or restarts it
+            _check_finished(folder, config.as_dict(), "an unfinished run", ("run.steps",))
     except ConfigError as error:
         raise ConfigError(f"point {point.name}: {error.key}", error.problem, error.fix) from error
     return {
@@ -120,10 +121,11 @@ def _check_point(sweep: Sweep, point: Point, folder: Path, laws: tuple[str, ...]
     }
 
 
-def _check_finished(folder: Path, wanted: dict, what: str = "a finished run") -> None:
+def _check_finished(folder: Path, wanted: dict, what: str = "a finished run", free: tuple[str, ...] = ()) -> None:
     """A point's folder that holds a run (finished, or files of one that is not) holds a run of this
     configuration (its config.json): the files of any other run (another sweep's, a run of the
-    user's) are never resumed over, restarted over or deleted."""
+    user's) are never resumed over, restarted over or deleted. Keys in ``free`` may differ (an
+    unfinished run continues to another ``run.steps``)."""
     try:
         stored = json.loads((folder / CONFIG).read_text())
     except (OSError, ValueError):
@@ -136,7 +138,7 @@ def _check_finished(folder: Path, wanted: dict, what: str = "a finished run") ->
         )
     stored.pop("command", None)
     there, here = flatten(stored), flatten(json.loads(dumps(wanted)))
-    differing = [key for key in dict.fromkeys([*here, *there]) if here.get(key) != there.get(key)]
+    differing = [key for key in dict.fromkeys([*here, *there]) if here.get(key) != there.get(key) and key not in free]
     if differing:
         key = differing[0]
         raise ConfigError(
