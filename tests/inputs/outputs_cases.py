@@ -90,7 +90,10 @@ CHECKPOINT_ROWS = {
 
 
 #: Rows of the writers of generated code (fricgen.derive.driver.check_not_foreign).
-WRITER_ROWS = [("lammps linear --out {in}/cmake_mine", "CMakeLists.txt", "exists and was not written by fricgen")]
+WRITER_ROWS = [
+    ("lammps linear --out {in}/cmake_mine", "CMakeLists.txt", "exists and was not written by fricgen"),
+    ("generate --laws {in}/linked_laws", "generated", "is a symbolic link: fricgen writes only into folders of its own"),
+]
 
 
 def rows() -> list[tuple[str, str, str]]:
@@ -145,6 +148,13 @@ def build(root: Path) -> None:
     (root / "bcd_result").mkdir()
     (root / "bcd_result" / "profile.csv").write_text("x,rho\n0.5,1.0\n")
     (root / "bcd_result" / "profile.png").write_bytes(b"\x89PNG a figure of an earlier study")
+    (root / "linked_laws").mkdir()
+    (root / "linked_laws" / "mylin.toml").write_text(
+        'name = "mylin"\nfriction = "w*gamma_f*u"\nweight = "wca"\n\n[parameters.gamma_f]\ndefault = 1.0\n'
+    )
+    (root / "elsewhere").mkdir()
+    (root / "elsewhere" / "keep.txt").write_text("the user's file, out of the law folder\n")
+    (root / "linked_laws" / "generated").symlink_to(root / "elsewhere")
     (root / "cmake_mine").mkdir()
     (root / "cmake_mine" / "CMakeLists.txt").write_text("cmake_minimum_required(VERSION 3.16)\nproject(mine)\n")
     values = ", ".join(str(0.1 + i * 1e-4) for i in range(1000))
