@@ -141,7 +141,7 @@ def dip_figure(runs: list[dict], path: Path) -> Path:
     maximum 0.2 away (no dip) is drawn at 1 with an open marker; the black dashed line is the strict
     threshold 0.5.
     """
-    figure = Figure(figsize=(10, 3.8), layout="constrained")
+    figure = Figure(figsize=(11, 4.6), layout="constrained")
     panels = figure.subplots(1, 2, sharey=True)
     titles = ("from a lattice (N = 2000, area fraction 0.5)", "cross-starts (time since the restart)")
     colours = {"no noise": "C1", "consistent": "C0", "no friction": "C2"}
@@ -160,7 +160,7 @@ def dip_figure(runs: list[dict], path: Path) -> Path:
         axis.set_xlabel(r"$t$ / $t_R$")
         axis.set_ylim(0, 1.05)
         if group:
-            axis.legend(frameon=False, fontsize=7)
+            axis.legend(frameon=False, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)
     panels[0].set_ylabel("dip ratio of the frame (1: no dip)")
     figure.savefig(path, dpi=80)
     return path
