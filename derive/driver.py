@@ -40,19 +40,24 @@ from .backends.numba_kernels.accuracy import KERNEL_TOLERANCE, kernel_accuracy
 from .backends.numba_kernels.kernel_code import CONTACT_SIGNATURE, DECORATOR, SIGNATURES
 from .backends.numba_kernels.modules import law_module, package_module, potential_module, special_module
 from .errors import DeriveError
-from .law import potentials
-from .law.catalogues import GENERATED, generate_command, is_built_in, kernel_folder, source_checkout
+from .law import manifests, potentials
+from .law.catalogues import GENERATED, check_law_files, generate_command, inert, is_built_in, kernel_folder, law_names, source_checkout
 from .law.expressions import time_limit
-from .law.lawdata import CATALOGUE, write_text_atomic
+from .law.lawdata import CATALOGUE, NotAFile, read_regular, write_text_atomic
 from .law.lawdata import POTENTIALS as POTENTIALS_SOURCE
 from .law.laws import FrictionLaw, load_law
 from .law.potentials import EXTERNAL_POTENTIALS, PAIR_POTENTIALS, check_external
+from .noise.contact import ContactReport, prove_contact
 from .noise.derivation import NoiseModel, derive_noise
 from .noise.verification import Report, prove
 
 #: Wall-time limit (seconds) of the derivation and verification of one law in one calculus: SymPy's
 #: cost grows steeply with f (a polynomial of degree 30 takes minutes), and no size limit bounds it.
 DERIVATION_TIME_LIMIT = 600.0
+#: The contact modes whose kernels the backends emit and the engines apply. Laws on the other modes
+#: (docs/physics-modes.md) are derived and proven by :func:`verify` and :func:`verify_contact`; their
+#: kernels would need the mode's mobility and map in the engines, which apply every law as sliding.
+EMITTED_MODES = ("sliding",)
 
 
 class GenerationError(DeriveError, RuntimeError):
@@ -67,6 +72,7 @@ class Written:
 
     path: Path
     status: str  # "written", "unchanged" or "removed"
+    sha256: str = ""  # of the text written or found (not re-read from the file: what fricgen wrote)
 
 
 def verify(model: NoiseModel) -> Report:
@@ -82,21 +88,63 @@ def verify(model: NoiseModel) -> Report:
     return dataclasses.replace(proof, checks=checks, details=details, seconds=proof.seconds + time.perf_counter() - start)
 
 
+def verify_contact(models: list[NoiseModel], dims: tuple[int, ...] | None = None) -> ContactReport:
+    """The proof of a pair with one law per contact mode (:func:`fricgen.derive.noise.contact.prove_contact`),
+    each law verified with its kernel check (:func:`verify`); ``reason`` says why a combination is refused."""
+    return prove_contact(models, dims, verifier=verify)
+
+
 # --- files ---------------------------------------------------------------------------------------
 
 
+def check_not_foreign(path: Path, text: str) -> None:
+    """DeriveError (one line) unless writing ``path`` replaces only what fricgen wrote there: neither
+    the file nor its two folders above (DIR/generated/laws) is a symbolic link that would lead the
+    write out of the folder (the package's own generated/ aside), and a file there with other content
+    is a file of the same kind (its first line is the header fricgen writes) or one whose sha256
+    fricgen recorded; a file of the user's (a CMakeLists.txt of their own) is never overwritten."""
+    if path.absolute().parent.resolve().is_relative_to(GENERATED.resolve()):
+        return
+    for link in (path, path.parent, path.parent.parent):
+        if link.is_symlink():
+            raise DeriveError(f"{inert(str(link))} is a symbolic link: fricgen writes only into folders of its own; replace it by a folder")
+    try:
+        data = read_regular(path, 1 << 22)
+    except (OSError, NotAFile):
+        return  # missing (written fresh), or reported by the caller
+    if data.split(b"\n", 1)[0] != text.encode().split(b"\n", 1)[0] and manifests.sha256(data) not in manifests.known_digests():
+        raise DeriveError(
+            f"{inert(str(path))} exists and was not written by fricgen: move it away (or give another folder), then run again"
+        )
+
+
 def write_if_changed(path: Path, text: str) -> Written:
-    """Write ``text`` atomically unless the file already holds exactly that (keeps Numba's cache valid)."""
-    if path.exists() and path.read_bytes() == text.encode():
-        return Written(path, "unchanged")
-    path.parent.mkdir(parents=True, exist_ok=True)
-    write_text_atomic(path, text)
-    return Written(path, "written")
+    """Write ``text`` atomically unless the file already holds exactly that (keeps Numba's cache valid).
+    DeriveError (one line) where something that is not a regular file (a folder, a FIFO) is in the way."""
+    check_not_foreign(path, text)
+    try:
+        if read_regular(path, len(text.encode()) + 1) == text.encode():
+            return Written(path, "unchanged", manifests.sha256(text.encode()))
+    except FileNotFoundError:
+        pass
+    except NotAFile as error:
+        raise DeriveError(f"{inert(str(path))} is {error.kind}, not a file fricgen wrote: move it away, then generate again") from None
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        write_text_atomic(path, text)
+    except OSError as error:
+        raise DeriveError(f"cannot write {inert(str(path))}: {error.strerror or error}") from None
+    return Written(path, "written", manifests.sha256(text.encode()))
 
 
 def verified_models(law: FrictionLaw, seconds: float | None = DERIVATION_TIME_LIMIT) -> tuple[dict[str, NoiseModel], list[Report]]:
     """Derive and verify the law for each of its calculi, each within ``seconds`` (None: no limit);
     raise GenerationError on any failure."""
+    if law.mode not in EMITTED_MODES:
+        raise GenerationError(
+            f"law {law.name}: mode {law.mode!r}: no kernels are emitted for it yet (the engines apply every law as sliding);"
+            f" `fricgen verify {law.name}` proves it"
+        )
     models, reports = {}, []
     for c in law.calculi:
         slow = GenerationError(f"law {law.name} ({c}): derivation and verification took over {seconds} s: nothing emitted")
@@ -117,7 +165,10 @@ def generate(names: list[str] | None = None, catalogue: Path = CATALOGUE, output
     folder DIR); the potentials with the built-in catalogue only.
 
     Idempotent: unchanged files are not touched. With ``names`` None, modules of laws no longer
-    in the catalogue are removed.
+    in the catalogue are removed. Every law is read, derived and verified before anything is written:
+    a law that is refused or fails leaves the output as it was. The sha256 of every file written or
+    found unchanged is recorded in the user's cache (:mod:`fricgen.derive.law.manifests`; not for the
+    package's own generated/), which the kernel loader checks before it runs any of them.
     """
     catalogue, built_in = Path(catalogue), is_built_in(catalogue)
     if built_in and output is None and not source_checkout():
@@ -133,10 +184,20 @@ def generate(names: list[str] | None = None, catalogue: Path = CATALOGUE, output
             f"{POTENTIALS_SOURCE} changed since fricgen.derive.law.potentials was imported: the potentials and the weights of laws would be"
             " emitted from the old version; run `fricgen generate` in a new Python process"
         )
-    available = sorted(p.stem for p in catalogue.glob("*.toml"))
+    available = law_names(catalogue) if built_in or names else check_law_files(catalogue)
     unknown = sorted(set(names or ()) - set(available))
     if unknown:
         raise GenerationError(f"unknown law(s) {unknown}; the catalogue {catalogue} has {available}")
+    laws = {name: load_law(catalogue / f"{name}.toml") for name in names or available}  # all read (or refused) before any is derived
+    reports, texts = [], {}
+    for name, law in laws.items():
+        models, law_reports = verified_models(law)
+        reports += law_reports
+        source = f"derive/law/catalogue/{name}.toml" if built_in else f"{catalogue.resolve().name}/{name}.toml"
+        texts[name] = law_module(law, models, law.source_hash, source, generate_command(name, catalogue))
+    record = not (output.resolve() == GENERATED.resolve())  # the package's own kernels are trusted as installed code
+    if record:
+        manifests.store()  # a cache folder to record the files in, or nothing is written
     written = [
         write_if_changed(
             output / "__init__.py", package_module("Emitted code only: every module here is written by fricgen.derive, never by hand.\n")
@@ -146,21 +207,22 @@ def generate(names: list[str] | None = None, catalogue: Path = CATALOGUE, output
     ]
     if built_in:
         written += _emit_potentials(output)
-    reports = []
-    for name in names or available:
-        path = catalogue / f"{name}.toml"
-        law = load_law(path)
-        models, law_reports = verified_models(law)
-        reports += law_reports
-        source = f"derive/law/catalogue/{name}.toml" if built_in else f"{catalogue.resolve().name}/{name}.toml"
-        text = law_module(law, models, law.source_hash, source, generate_command(name, catalogue))
-        written.append(write_if_changed(output / "laws" / f"{name}.py", text))
+    written += [write_if_changed(output / "laws" / f"{name}.py", text) for name, text in texts.items()]
     if names is None:
         for orphan in sorted((output / "laws").glob("*.py")):
             if orphan.stem != "__init__" and orphan.stem not in available:
                 orphan.unlink()
                 written.append(Written(orphan, "removed"))
+    if record:
+        _record(output, written)
     return written, reports
+
+
+def _record(output: Path, written: list[Written]) -> None:
+    """The sha256 of every file written or found unchanged, in the manifest of ``output`` (fricgen.derive.law.manifests)."""
+    kept = {item.path.relative_to(output).as_posix(): item.sha256 for item in written if item.status != "removed"}
+    gone = tuple(item.path.relative_to(output).as_posix() for item in written if item.status == "removed")
+    manifests.record(output, kept, gone)
 
 
 def _emit_potentials(output: Path) -> list[Written]:
@@ -186,6 +248,7 @@ __all__ = [
     "generate",
     "verified_models",
     "verify",
+    "verify_contact",
     "law_module",
     "potential_module",
     "write_if_changed",

@@ -19,6 +19,8 @@ from pathlib import Path
 
 import pytest
 
+from fricgen.derive.noise.lemma_cache import cache_folder
+
 ROOT = Path(__file__).resolve().parents[1]
 LAW = """name = "user_viscous"
 description = "A user's viscous law: f = w gamma_f u, D = w gamma_f."
@@ -62,7 +64,8 @@ def installed(tmp_path_factory):
     unset = ("PYTHONPATH", "PYTHONHOME", "VIRTUAL_ENV", "FRICGEN_LAWS", "NUMBA_CACHE_DIR")
     env = {k: v for k, v in os.environ.items() if k not in unset}
     env |= {"PATH": f"{venv / 'bin'}{os.pathsep}{env.get('PATH', '')}", "PIP_DISABLE_PIP_VERSION_CHECK": "1", "PIP_NO_INPUT": "1"}
-    env |= {"FRICGEN_CACHE": str(tmp / "cache"), "XDG_CACHE_HOME": str(tmp / "xdg")}  # the user's own cache
+    # the user's own cache folder; the law-independent lemma is taken from this session's cache (proving it costs 30 s)
+    env |= {"XDG_CACHE_HOME": str(tmp / "xdg"), "FRICGEN_CACHE": str(cache_folder() or "off")}
     work = tmp / "work"  # the user's folder, outside the repository
     work.mkdir()
 
@@ -120,6 +123,9 @@ def test_a_user_runs_the_demo_and_brings_a_law(installed):
     lammps = run("fricgen", "lammps", "--laws", "laws", "user_viscous", "--out", "plugin")
     assert lammps.returncode == 0, lammps.stderr
     assert (work / "plugin" / "pair_fricgen_user_viscous.cpp").is_file() and (work / "plugin" / "CMakeLists.txt").is_file()
+    built_in = run("fricgen", "lammps", "linear")  # no --out: the user's cache, not the package
+    assert built_in.returncode == 0, built_in.stderr
+    assert (work.parent / "xdg" / "fricgen" / "lammps-sources" / "linear" / "CMakeLists.txt").is_file()
     assert _files(purelib / "fricgen") == before, "the installed package was written to"
 
 

@@ -178,7 +178,7 @@ def _prune(keep: Path) -> None:
                 shutil.rmtree(entry, ignore_errors=True)
 
 
-def _known_digests() -> set[str]:
+def known_digests() -> set[str]:
     """The sha256 of every file that any manifest of the store records (fricgen wrote it somewhere),
     and of the installed package's own generated code (fricgen.generated: trusted as installed code)."""
     found = {sha256(path.read_bytes()) for path in GENERATED.rglob("*.py") if "__pycache__" not in path.parts}
@@ -212,7 +212,7 @@ def verified(folder: str | Path, names: list[str], command: str) -> dict[str, by
             raise UntrustedFile(f"cannot read {shown}: {error.strerror or error}") from None
         digest = sha256(data)
         if len(data) <= MAX_FILE and files.get(name) != digest:
-            known = _known_digests() if known is None else known
+            known = known_digests() if known is None else known
             if digest not in known:
                 if name in files:
                     raise UntrustedFile(f"{shown} is not the file that fricgen wrote (it was edited or replaced since): run `{command}`")
@@ -253,4 +253,4 @@ def _shown(path: Path) -> str:
     return text if text.isprintable() else json.dumps(text)
 
 
-__all__ = ["CACHE_ENV", "UntrustedFile", "cache_root", "manifest", "record", "sha256", "store", "trusted_copy", "verified"]
+__all__ = ["CACHE_ENV", "UntrustedFile", "cache_root", "known_digests", "manifest", "record", "sha256", "store", "trusted_copy", "verified"]

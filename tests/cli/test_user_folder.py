@@ -133,3 +133,20 @@ def test_stale_kernels_are_refused_and_reloaded_after_regeneration(laws, tmp_pat
         load_law_kernels("user_viscous", catalogue=folder)
     assert main(["generate", "--laws", str(folder), "user_viscous"]) == 0
     assert load_law_kernels("user_viscous", catalogue=folder).parameters()[0] == 3.0  # the new module, in the same process
+
+
+def test_a_run_resumed_with_another_version_of_its_law_is_refused(laws, tmp_path, capsys):
+    """The run resolves its law once, at the edge, and the checkpoint records the law file it ran."""
+    folder = tmp_path / "laws"
+    shutil.copytree(laws, folder, ignore=shutil.ignore_patterns("__pycache__"))
+    config = tmp_path / "run.toml"
+    config.write_text(
+        '[system]\nn = 16\npacking_fraction = 0.5\n[law]\nname = "user_viscous"\nfolder = "laws"\n[run]\nsteps = 200\nchunk = 100\n'
+    )
+    assert main(["run", str(config), "--out", str(tmp_path / "out"), "--steps", "100", "--set", "output.trajectory_period=0"]) == 0
+    write_law(folder, default=3.0)
+    assert main(["generate", "--laws", str(folder), "user_viscous"]) == 0
+    capsys.readouterr()
+    assert main(["run", str(config), "--resume", str(tmp_path / "out" / "checkpoint.npz")]) == 2
+    error = capsys.readouterr().err.strip()
+    assert error.startswith("fricgen run: law: the checkpoint ran ") and "user_viscous.toml" in error and "\n" not in error

@@ -21,7 +21,11 @@ from fricgen.rng import CONTACT, stream_key
 from .helpers import data_file, dump_lines, read_dump, run, vectors
 
 BOX, SEED, KT, DT, EPSILON = 10.0, 77, 1.3, 2e-3, 1.2
-LAWS = {"coulomb_newton": {"gamma_f": 4.5, "kappa_f": 2.5}, "smooth_coulomb": {"kappa_f": 3.0, "u0": 0.2}}
+LAWS = {
+    "coulomb_newton": {"gamma_f": 4.5, "kappa_f": 2.5},
+    "smooth_coulomb": {"kappa_f": 3.0, "u0": 0.2},  # D from noise tables (fricgen.derive.backends.tables), the plugin's and the engine's
+    "stribeck": {"kappa_s": 4.0, "kappa_d": 2.5, "u_s": 0.3},  # a closed form through erfcx and exp(-u/u_s)
+}
 
 
 def spheres(dim: int):

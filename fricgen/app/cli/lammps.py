@@ -2,7 +2,8 @@
 
 Generation (fricgen.derive.backends.lammps_plugin.module) writes the C++ of the pair style ``fricgen/<law>``, its plugin
 registration, a CMakeLists.txt and input templates into ``generated/lammps/<law>/`` (a user law
-of a folder DIR: DIR/generated/lammps/<law>/; ``--out`` elsewhere), from the same verified SymPy
+of a folder DIR: DIR/generated/lammps/<law>/; a built-in law of an installed package: the user's
+cache, never the package; ``--out`` elsewhere), from the same verified SymPy
 model as the Numba kernels, with their header and source hash; unchanged files are not touched.
 ``--build`` then compiles the plugin with CMake against LAMMPS into a build folder outside the
 sources (by default in the user's cache, keyed on the hash of the sources and the LAMMPS used), so a
@@ -112,10 +113,15 @@ def _tool(name: str) -> str:
 
 
 def plugin_folder(law: str) -> Path:
-    """generated/lammps/<law>/ beside the kernels of the law's catalogue."""
-    from fricgen.derive.law.catalogues import find_law, kernel_folder
+    """generated/lammps/<law>/ beside the kernels of the law's catalogue: a user folder's, or the
+    repository's in a source checkout; for a built-in law of an installed package, which fricgen
+    never writes to, $XDG_CACHE_HOME/fricgen/lammps-sources/<law> (~/.cache by default)."""
+    from fricgen.derive.law.catalogues import find_law, is_built_in, kernel_folder, source_checkout
 
-    return kernel_folder(find_law(law).parent) / "lammps" / law
+    catalogue = find_law(law).parent
+    if is_built_in(catalogue) and not source_checkout():
+        return Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "fricgen" / "lammps-sources" / law
+    return kernel_folder(catalogue) / "lammps" / law
 
 
 def plugin_texts(name: str, calculus: str = "ito") -> dict[str, str]:
@@ -150,13 +156,15 @@ def emit_plugin(name: str, calculus: str = "ito", out: str | Path | None = None)
     """Write the plugin's files into ``out`` (default :func:`plugin_folder`) and record their sha256 in
     the user's cache (fricgen.derive.law.manifests; not for the package's own generated/); returns the
     folder and (path, "written" or "unchanged") per file."""
-    from fricgen.derive.driver import write_if_changed
+    from fricgen.derive.driver import check_not_foreign, write_if_changed
     from fricgen.derive.law import manifests
 
     folder = Path(out) if out is not None else plugin_folder(name)
     texts = plugin_texts(name, calculus)
     if not _packaged(folder):
         manifests.store()  # somewhere to record them, or nothing is written
+    for file, text in texts.items():  # all checked before any is written
+        check_not_foreign(folder / file, text)
     written = [write_if_changed(folder / file, text) for file, text in texts.items()]
     if not _packaged(folder):
         manifests.record(folder.resolve(), {item.path.name: item.sha256 for item in written})
@@ -290,7 +298,12 @@ def add_lammps_command(subparsers) -> argparse.ArgumentParser:
         default="ito",
         help="calculus of D; LAMMPS's velocity Verlet is Euler–Maruyama, so only ito is consistent (the others are refused)",
     )
-    command.add_argument("--out", metavar="DIR", help="write the sources into DIR (default generated/lammps/LAW beside the law's kernels)")
+    command.add_argument(
+        "--out",
+        metavar="DIR",
+        help="write the sources into DIR (default generated/lammps/LAW beside the law's kernels; for a built-in law"
+        " of an installed package, the user's cache)",
+    )
     command.add_argument(
         "--build", action="store_true", help="also build the plugin with CMake (reused while sources and LAMMPS are unchanged)"
     )
