@@ -22,7 +22,11 @@ one wavelength (B-24, B-25) and histograms the gaps r - sigma of neighbours at t
 exact contacts (left by merging) apart, positive gaps in bins of width w (B-26; see fricgen.rods.simulation for the
 estimate of the contact density); the same pass checks that no two rods overlap.
 
-The physics: docs/physics.md#brownian-cluster-dynamics.
+Steps 2 and 3 are BCD's own contact layer ("merge", O(sqrt(dt))); the layers "reflect" and "bridge"
+(fricgen.rods.contact, O(dt)) replace them by trial displacements mu F_i dt and a restored hard core,
+selected by Stepping.layer.
+
+The physics: docs/physics.md#brownian-cluster-dynamics, docs/physics-bcd-contact-layer.md.
 """
 
 from __future__ import annotations
@@ -35,6 +39,7 @@ from numba import types
 
 from ..kernels import FIELD_KERNEL, SCALAR_KERNEL
 from ..rng import BCD, fold_key, stream_key, ziggurat_normal
+from .contact import BRIDGE, MERGE, propagate, tally_local_time
 from .records import COUNTS, RING, STEPPING
 
 CONTACT_TOLERANCE = 1e-12  # relative to sigma: gaps below it are contacts
@@ -232,7 +237,8 @@ def advance_rods(positions, ring, stepping, external, pair_force, counts):
     ``external`` is the field's force_field(xs, params, out), ``pair_force`` the neighbour force
     f(r, params) on the right rod. counts = (rho_counts, gap_counts): rho_counts[r, b] accumulates
     rods per bin of one wavelength; gap_counts[r, b, k] the left rods of pairs in exact contact
-    (k = 0) and with gap r - sigma in [(k - 1) w, k w) (k >= 1), w = gap_width. Returns OK or a
+    (k = 0; with the bridge layer instead their local time at contact, fricgen.rods.contact.tally_local_time)
+    and with gap r - sigma in [(k - 1) w, k w) (k >= 1), w = gap_width. Returns OK or a
     failure status (PASSED: rods overlapped; ALL_IN_CONTACT: no gap left on the ring).
     """
     rho_counts, gap_counts = counts
@@ -240,12 +246,14 @@ def advance_rods(positions, ring, stepping, external, pair_force, counts):
     replicas, n = positions.shape
     status = np.zeros(replicas, dtype=np.int64)
     noise = math.sqrt(2.0 * ring.diffusion / dt) / mu
+    variance = 4.0 * ring.diffusion * dt  # of a gap's increment over a step
     for r in numba.prange(replicas):
         x = positions[r]
         forces, v, prefix, when = np.empty(n), np.empty(n), np.empty(n + 1), np.empty(n)
         members = np.empty(n, dtype=np.int64)
         stack = np.empty((2 * n + 2, 2), dtype=np.int64)
         heap_t, heap_i = np.empty(3 * n), np.empty(3 * n, dtype=np.int64)  # n, then 2 per merge (< n merges)
+        d, push, candidates, values = np.empty(n), np.empty(n), np.empty(n, dtype=np.int64), np.empty((n, 4))
         for s in range(stepping.steps):
             key = fold_key(stream_key(stepping.seed, stepping.first_step + s, BCD), r)
             external(x, ring.field_params, forces)
@@ -258,7 +266,16 @@ def advance_rods(positions, ring, stepping, external, pair_force, counts):
                         f = pair_force(gap, ring.pair_params)  # on the right rod, from the left one (B-32)
                         forces[i + 1 if i + 1 < n else 0] += f
                         forces[i] -= f
-            status[r] = _step(x, forces, v, length, sigma, mu, dt, (members, stack, prefix), (heap_t, heap_i, when))
+            if stepping.layer == MERGE:
+                status[r] = _step(x, forces, v, length, sigma, mu, dt, (members, stack, prefix), (heap_t, heap_i, when))
+            else:  # trial displacements mu F dt, then the hard core by exchanges (fricgen.rods.contact)
+                for i in range(n):
+                    d[i] = mu * forces[i] * dt
+                count = propagate(x, d, length, sigma, variance, key, stepping.layer, (push, candidates, values))
+                if stepping.layer == BRIDGE:  # the contact density from the local time at contact
+                    tally_local_time(
+                        (push, candidates, values), count, variance, 2.0 * stepping.gap_width / variance, ring.wavelength, gap_counts[r]
+                    )
             if status[r] == OK:
                 status[r] = _sample(x, ring, stepping.gap_width, rho_counts[r], gap_counts[r])
             if status[r] != OK:

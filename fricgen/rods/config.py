@@ -16,7 +16,9 @@ from ..schema import Section, flat_fields
 
 #: Memory per rod and replica (positions and the BCD work arrays) and per histogram bin and replica
 #: (counts and the profiles derived from them), in bytes: upper estimates.
-BYTES_PER_ROD, BYTES_PER_BIN = 160, 32
+BYTES_PER_ROD, BYTES_PER_BIN = 192, 32
+#: How a step ends collisions (fricgen.rods.contact): BCD's inelastic merge (O(sqrt(dt))), elastic exchange, Brownian-bridge push.
+CONTACT_LAYERS = ("merge", "reflect", "bridge")
 
 
 @dataclass(frozen=True)
@@ -107,19 +109,26 @@ class RodModel(Section):
 
 @dataclass(frozen=True)
 class RodNumerics(Section):
-    """Time step ``dt`` (bias O(sqrt(dt)), docs/physics.md#brownian-cluster-dynamics), noise ``seed``,
-    and ``start_sweeps`` Monte Carlo sweeps of the equilibrium start (fricgen.rods.mc)."""
+    """Time step ``dt``, noise ``seed``, ``start_sweeps`` Monte Carlo sweeps of the equilibrium start
+    (fricgen.rods.mc), and the ``contact_layer`` that ends collisions within a step (fricgen.rods.contact):
+    "bridge" (bias O(dt), docs/physics-bcd-contact-layer.md), "reflect" (O(dt) away from contact) or BCD's
+    own "merge" (O(sqrt(dt)), docs/physics.md#brownian-cluster-dynamics)."""
 
     SECTION = "numerics"
     dt: float = 2.5e-6
     seed: int = 1
     start_sweeps: int = 2000
+    contact_layer: str = "bridge"
 
     def __post_init__(self):
         self.require_positive("dt")
         self.require(0 <= self.seed < 2**63, "seed", f"must be an integer in [0, 2^63), got {self.seed}", "give a non-negative integer")
         self.require(self.start_sweeps >= 0, "start_sweeps", f"must be >= 0, got {self.start_sweeps}", "give 0 or more")
         self.require_steps("start_sweeps", self.start_sweeps)
+        layers = ", ".join(CONTACT_LAYERS)
+        self.require(
+            self.contact_layer in CONTACT_LAYERS, "contact_layer", f"must be one of {layers}, got {self.contact_layer!r}", "give bridge"
+        )
 
 
 @dataclass(frozen=True)
@@ -187,8 +196,11 @@ class RodConfig(Section):
         )
 
     def contact_fit_bins(self) -> int:
-        """Gap bins that the contact density's fit needs at this dt (fricgen.rods.simulation): the BCD
-        layer of width about 3 sqrt(4 D dt), then two windows of fit_bins / 2."""
+        """Gap bins that the contact density needs at this dt (fricgen.rods.simulation). bridge: the bin of
+        its local time at contact only. merge, reflect: that bin, the layer of width about 3 sqrt(4 D dt)
+        where their pair density is distorted, then two windows of fit_bins / 2."""
+        if self.numerics.contact_layer == "bridge":
+            return 1
         layer = 1 + math.ceil(3 * math.sqrt(4 * self.model.diffusion * self.numerics.dt) / self.sampling.gap_width)
         return layer + 2 * (self.sampling.fit_bins // 2)
 

@@ -30,16 +30,17 @@ class Ring(NamedTuple):
 
 
 class Stepping(NamedTuple):
-    """Time step, number of steps, the first step's index (the noise counter), noise seed, and the
-    width of the gap histogram's bins."""
+    """Time step, number of steps, the first step's index (the noise counter), noise seed, the
+    width of the gap histogram's bins, and the contact layer (fricgen.rods.contact: MERGE, REFLECT, BRIDGE)."""
 
     dt: float
     steps: int
     first_step: int
     seed: int
     gap_width: float
+    layer: int = 0
 
 
 RING = types.NamedTuple([_F, _F, _F, _F, _F, _F, _F, _V, _V, _F, _B], Ring)
-STEPPING = types.NamedTuple([_F, _I, _I, _I, _F], Stepping)
+STEPPING = types.NamedTuple([_F, _I, _I, _I, _F, _I], Stepping)
 COUNTS = types.Tuple([_M, _T])

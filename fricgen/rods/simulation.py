@@ -5,18 +5,21 @@ wavelength: rho(x) (B-25) and rho_2(x, x + sigma) (B-26) at bin centres, with st
 the scatter between independent replicas, each started from an equilibrium configuration sampled
 by Monte Carlo (fricgen.rods.mc).
 
-Time-step error: after a BCD step the rods of a merged cluster touch exactly (gap 0). This atom of
-exact contacts holds about 0.7 rho_2(0) s of pair density, s = sqrt(4 D dt) the rms change of a gap
-per step (the discrete-monitoring shift of a reflecting wall), taken from the gaps just above
-contact. So BCD behaves like rods shortened by O(s): profile and contact density carry an O(sqrt(dt))
-bias (measured: the contact density of the uniform fluid at rho_bar sigma = 0.7 is 5 % low at
-dt = 1e-5, 2 % at 1e-6).
+Time-step error depends on the contact layer (RodNumerics.contact_layer, fricgen.rods.contact;
+docs/physics-bcd-contact-layer.md). BCD's own "merge": the rods of a merged cluster touch exactly (gap 0)
+after a step. This atom of exact contacts holds about 0.7 rho_2(0) s of pair density, s = sqrt(4 D dt)
+the rms change of a gap per step (the discrete-monitoring shift of a reflecting wall), taken from the
+gaps just above contact. So BCD behaves like rods shortened by O(s): profile and contact density carry
+an O(sqrt(dt)) bias (measured: the contact density of the uniform fluid at rho_bar sigma = 0.7 is 5 %
+low at dt = 1e-5, 2 % at 1e-6). "bridge" pushes a pair apart by its bridge's excursion below contact:
+O(dt), no layer. "reflect" (elastic exchange): O(dt) away from contact, O(sqrt(dt)) within s of it.
 
-Contact density (B-26): the pair density at gap g beyond the layer, g in [3 s, 3 s + fit_bins w],
-is fitted per bin by ln rho_2(x, g) = a + b g and extrapolated to g = 0; the exact contacts are
-not counted. Errors by jackknife over replicas. This holds for hard rods only: within the range of a
-sticky or pair interaction the pair density is not exponential in g (deviations() compares it for
-hard rods only).
+Contact density (B-26). bridge: the local time of the gaps at contact, E[dL] = 2 D rho_2(x, sigma+) dt,
+from the expected push given each step's end points (no fit). merge and reflect: the pair density at gap
+g beyond the layer, g in [3 s, 3 s + fit_bins w], is fitted per bin by ln rho_2(x, g) = a + b g and
+extrapolated to g = 0; the exact contacts are not counted. Errors by jackknife over replicas. This
+holds for hard rods only: within the range of a sticky or pair interaction the pair density is not
+exponential in g and the force acts at contact (deviations() compares it for hard rods only).
 """
 
 from __future__ import annotations
@@ -30,7 +33,7 @@ import numpy as np
 from ..errors import ConfigError, SimulationError
 from ..rng import INITIAL, normals
 from . import bcd, mc
-from .config import RodConfig
+from .config import CONTACT_LAYERS, RodConfig
 from .interactions import field_kernels, pair_kernels, stability_ratio
 from .records import Ring, Stepping
 
@@ -107,7 +110,9 @@ class RodSimulation:
         numerics, sampling = self.config.numerics, self.config.sampling
         shape = (sampling.replicas, sampling.bins)
         counts = counts or (np.zeros(shape), np.zeros((*shape, sampling.gap_bins)))
-        stepping = Stepping(dt or numerics.dt, steps, self.step, numerics.seed, sampling.gap_width)
+        stepping = Stepping(
+            dt or numerics.dt, steps, self.step, numerics.seed, sampling.gap_width, CONTACT_LAYERS.index(numerics.contact_layer)
+        )
         status = bcd.advance_rods(self.positions, self.ring, stepping, self._field.force_field, self._pair.force, counts)
         if status == bcd.PASSED:
             raise SimulationError(f"rods overlapped near step {self.step + steps}: a bug or a non-finite force")
@@ -149,6 +154,9 @@ class RodSimulation:
         [g0, g0 + d) and [g0 + d, g0 + 2d) fix rho_2(g) = rho_2(0) exp(-k g): k = ln(A / B) / d,
         rho_2(0) = A exp(k g0) (k d) / (1 - exp(-k d)). Errors by jackknife over the replicas."""
         c = self.config.sampling
+        if self.config.numerics.contact_layer == "bridge":  # gap bin 0 holds the local time at contact
+            local = pair_density[:, :, 0]
+            return local.mean(0), local.std(0, ddof=1) / math.sqrt(local.shape[0])
         half = c.fit_bins // 2
         first = self.config.contact_fit_bins() - 2 * half  # RodConfig checked that gap_bins suffice
         start, span = (first - 1) * c.gap_width, half * c.gap_width

@@ -39,8 +39,9 @@ def test_cluster_rule_splits_at_the_largest_positive_mean_force_difference():
     np.testing.assert_allclose(velocities([2.0, -1.0, 3.0]), [0.5, 0.5, 3.0])  # {2, 1}: (3 - 0.5) beats (1 - 2)
 
 
-def test_rods_never_overlap_or_pass_in_long_dense_runs():
-    config = rod_config(n=180, length=100.0, sigma=0.5, dt=1e-3, replicas=4, seed=5)  # rho_bar sigma = 0.9
+@pytest.mark.parametrize("layer", ["merge", "reflect", "bridge"])
+def test_rods_never_overlap_or_pass_in_long_dense_runs(layer):
+    config = rod_config(n=180, length=100.0, sigma=0.5, dt=1e-3, replicas=4, seed=5, contact_layer=layer)  # rho_bar sigma = 0.9
     simulation = RodSimulation(config)
     for _ in range(20):
         simulation.advance(1000)  # raises on any overlap (the engine checks after every step)
@@ -49,9 +50,10 @@ def test_rods_never_overlap_or_pass_in_long_dense_runs():
         assert gaps.min() >= config.model.sigma * (1 - 1e-9)
 
 
-def test_same_seed_same_run_and_chunking_does_not_matter():
-    config = rod_config(n=60, dt=1e-4, replicas=2, seed=9)
-    a, b, c = RodSimulation(config), RodSimulation(config), RodSimulation(rod_config(n=60, dt=1e-4, replicas=2, seed=10))
+@pytest.mark.parametrize("layer", ["merge", "bridge"])
+def test_same_seed_same_run_and_chunking_does_not_matter(layer):
+    config = rod_config(n=60, dt=1e-4, replicas=2, seed=9, contact_layer=layer)
+    a, b, c = RodSimulation(config), RodSimulation(config), RodSimulation(config.replace(seed=10))
     a.advance(600)
     for _ in range(3):
         b.advance(200)
@@ -147,9 +149,11 @@ def test_open_line_hard_rods_are_sorted_free_brownian_motions():
 
 
 def test_dense_profile_and_contact_density_after_extrapolation_in_sqrt_dt():
-    """rho_bar sigma = 0.7: BCD's O(sqrt(dt)) bias is resolved at dt = 4e-5 and 1e-5 (the contact density
+    """BCD's own merge layer at rho_bar sigma = 0.7: its O(sqrt(dt)) bias is resolved at dt = 4e-5 and 1e-5 (the contact density
     is 12 % and 6 % low), and the extrapolation to dt = 0 agrees with the exact theory within error."""
-    coarse, fine = (rod_config(n=140, length=100.0, sigma=0.5, dt=dt, replicas=16, bins=25, seed=11) for dt in (4e-5, 1e-5))
+    coarse, fine = (
+        rod_config(n=140, length=100.0, sigma=0.5, dt=dt, replicas=16, bins=25, seed=11, contact_layer="merge") for dt in (4e-5, 1e-5)
+    )
     exact = exact_profile(fine)
     runs = [sample(config, 1.25) for config in (coarse, fine)]
     biased = deviations(runs[0], exact)
@@ -166,7 +170,8 @@ def test_sticky_rods_match_the_exact_theory_of_their_representation_after_extrap
     of the exact delta_eps profile (B-31), and the hard-rod profile is rejected. Baxter's limit (B-29)
     differs by O(eps), about 0.4 % of rho_bar (fricgen bcd reports it)."""
     coarse, fine = (
-        rod_config(n=50, length=100.0, sigma=0.5, gamma=1.0, p=3.0, eps=0.05, dt=dt, replicas=16, bins=25, seed=4) for dt in (1e-5, 2.5e-6)
+        rod_config(n=50, length=100.0, sigma=0.5, gamma=1.0, p=3.0, eps=0.05, dt=dt, replicas=16, bins=25, seed=4, contact_layer="merge")
+        for dt in (1e-5, 2.5e-6)
     )
     exact = exact_profile(fine)
     runs = [sample(config, 1.5, equilibration=0.1) for config in (coarse, fine)]
@@ -196,7 +201,7 @@ def test_bad_configurations_are_refused():
     with pytest.warns(UserWarning, match="B-33"):
         RodSimulation(rod_config(gamma=1.0, dt=1e-3))
     with pytest.raises(ValueError, match="gap_bins"):
-        RodSimulation(rod_config(n=20, dt=1e-3, gap_bins=10, replicas=2)).run(20)
+        RodSimulation(rod_config(n=20, dt=1e-3, gap_bins=10, replicas=2, contact_layer="merge")).run(20)
     with pytest.raises(ValueError, match="pair potential"):
         RodSimulation(rod_config(field="sticky"))
     with pytest.raises(ValueError, match=r"no parameter\(s\) \['b'\]"):
