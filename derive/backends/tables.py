@@ -17,7 +17,9 @@ lazily per (a, parameters) on first use. ``verify``'s kernel check builds them f
 and checks the tabulated D against mpmath like the quadrature (fricgen.derive.backends.numba_kernels.accuracy).
 
 Not tabulated (quadrature only): laws whose f has branch points in u (a table piece across a kink
-converges slowly) and laws where w or r enters f other than as a factor.
+converges slowly), laws whose g is not analytic at u = 0 (a power u**alpha with alpha not a
+nonnegative integer: polynomial pieces near u = 0 reach only about 1e-9, measured for alpha = 1/2)
+and laws where w or r enters f other than as a factor.
 """
 
 from __future__ import annotations
@@ -40,9 +42,19 @@ def table_factor(law: FrictionLaw, model: NoiseModel) -> sp.Expr | None:
     if model.closed_form or model.variance_scale == 0 or switches(law.friction):
         return None
     factor, shape = sp.factor_terms(law.friction).as_independent(u, as_Add=False)
-    if shape.free_symbols & {w, r}:
+    if shape.free_symbols & {w, r} or not _analytic_at_zero(shape):
         return None
     return factor
+
+
+def _analytic_at_zero(shape: sp.Expr) -> bool:
+    """No power of an expression that vanishes at u = 0 with an exponent other than a nonnegative
+    integer (u**alpha, sqrt(u)): such a g has no convergent polynomial expansion at u = 0."""
+    for power in shape.atoms(sp.Pow):
+        whole = power.exp.is_integer and power.exp.is_nonnegative
+        if power.base.has(u) and not whole and sp.simplify(power.base.subs(u, 0)) == 0:
+            return False
+    return True
 
 
 __all__ = ["TABLE_PIECES", "TABLE_TOLERANCE", "table_factor"]
