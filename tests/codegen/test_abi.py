@@ -5,10 +5,10 @@ any law's or potential's kernels as first-class functions)."""
 import numba
 import numpy as np
 import pytest
-from fricgen.derive.driver import CONTACT_SIGNATURE, GENERATED, SIGNATURES
 from numba.core.dispatcher import Dispatcher
 from numba.core.sigutils import normalize_signature
 
+from fricgen.derive.driver import CONTACT_SIGNATURE, GENERATED, SIGNATURES
 from fricgen.kernels import (
     CONTACT_KERNEL,
     FIELD_KERNEL,
@@ -20,9 +20,14 @@ from fricgen.kernels import (
     no_weight,
 )
 
-#: The ABI type of each argument list of fricgen.derive.driver.SIGNATURES.
+#: tabulate_<c>(mobilities, kT, params) -> params with the noise tables appended (called by Simulation
+#: at its start, not by the compiled engine).
+TABLE_BUILDER = numba.types.float64[::1](numba.types.float64[::1], numba.types.float64, numba.types.float64[::1])
+#: The ABI type of each argument list of fricgen.derive.driver.SIGNATURES ("w, r, params": the private
+#: factor h(w, r) of a tabulated law, f = h g(u), inlined into its noise kernels).
 BY_ARGUMENTS = {
     "r, params": SCALAR_KERNEL,
+    "w, r, params": numba.types.FunctionType(numba.types.float64(numba.types.float64, numba.types.float64, numba.types.float64[::1])),
     "x, params": SCALAR_KERNEL,
     "u, w, r, params": FRICTION_KERNEL,
     "u, w, r, mu, kT, params": NOISE_KERNEL,
@@ -42,6 +47,8 @@ def abi_of(name: str):
         return CONTACT_KERNEL
     if name == "force_field":
         return FIELD_KERNEL
+    if name.startswith("tabulate_"):
+        return numba.types.FunctionType(TABLE_BUILDER)
     raise AssertionError(f"generated kernel {name} has no ABI type: add it to fricgen.kernels and to this test")
 
 
@@ -85,6 +92,7 @@ def test_law_kernels_are_compiled_for_exactly_their_abi_type(name):
     expected = {"friction", "friction_over_u", "friction_slope"} | {
         f"{k}_{c}" for c in law.calculi for k in ("noise_amplitude", "noise_sqrt", "contact")
     }
+    expected |= {f"tabulate_{c}" for c in law.calculi if hasattr(law.module, f"tabulate_{c}")}  # laws with noise tables
     assert set(kernels) == expected | ({"weight"} if law.has_weight else set())
     for kernel_name, kernel in kernels.items():
         signature = abi_of(kernel_name).signature
