@@ -1,46 +1,106 @@
-"""How large may the BCD time step be? (issue 5)
+"""How large may the BCD time step be, per contact layer? (issues 5 and 30)
 
-Hard rods, U0 = 6, lambda = 1, sigma = 0.5, L = 100, 16 replicas started from Monte Carlo
-equilibrium, 0.25 time units of BCD at each dt, then sampled for T time units: L1 / rho_bar and chi^2 per bin of the profile
-and the contact density ratio against the exact theory, and the Richardson extrapolation in
-sqrt(dt) from the two smallest steps. BCD's bias is O(sqrt(dt)) (see fricgen.rods). The speed
-figures (CPU per particle-step, wall time to a 1 % profile) are in benchmarks/bcd.py.
-Run: python benchmarks/bcd_timestep.py [T]
+Rods in U = (U0/2) cos(2 pi x), U0 = 6, lambda = 1, sigma = 0.5, L = 100; 16 replicas started from Monte
+Carlo equilibrium, 0.25 time units at dt, then sampled. Cases: hard rods at rho_bar sigma = 0.2, 0.5, 0.7
+(T = 1.25 sampled), and sticky rods gamma = 1, p = 3, eps = 0.05 at rho_bar sigma = 0.25 (T = 3). Per
+layer and dt: L1 / rho_bar and chi^2 per bin of the profile, the contact density ratio (hard rods) with
+its chi^2 per bin, and the well contrast c - 1 with its error: c is the profile's projection on the exact
+one's deviation from rho_bar, sum (rho - rho_bar)(rho_ex - rho_bar) / sum (rho_ex - rho_bar)^2, one value
+per replica (1 when exact; below 1 for rods that look shorter or, sticky, over-bound across barriers).
+Then the fitted order q of |bias| = C dt^q, for the bias c - 1 and (hard rods) the contact ratio - 1,
+over the steps where the bias exceeds 3 of its errors.
+
+Run: nice -n 10 python benchmarks/bcd_timestep.py [--layers merge,bridge] [--steps 1e-3,...] [--cases 0.2,0.5,0.7,sticky] [--time T]
+(the full table: minutes per layer and case on two cores; dt = 1e-6 dominates).
 """
 
 from __future__ import annotations
 
-import sys
+import argparse
+import math
 import time
 
-from fricgen.rods import RodSimulation, deviations, exact_profile, extrapolate_to_zero_dt, rod_config
+import numpy as np
 
-STEPS = (1e-4, 4e-5, 1e-5, 2.5e-6)
+from fricgen.rods import RodSimulation, deviations, exact_profile, rod_config
+from fricgen.rods.simulation import RodProfiles
 
-
-def study(n: int, duration: float) -> None:
-    profiles = []
-    for dt in STEPS:
-        config = rod_config(n=n, length=100.0, sigma=0.5, dt=dt, replicas=16, bins=25, seed=11)
-        simulation = RodSimulation(config)
-        simulation.equilibrate(0.25)
-        start = time.perf_counter()
-        profiles.append(simulation.run(round(duration / dt)))
-        seconds = time.perf_counter() - start
-        report(f"rho_bar sigma = {n * 0.005:.2f}, dt = {dt:.1e}", deviations(profiles[-1], exact_profile(config)), seconds)
-    extrapolated = extrapolate_to_zero_dt(profiles[-2], profiles[-1], STEPS[-2] / STEPS[-1])
-    report(f"rho_bar sigma = {n * 0.005:.2f}, extrapolated", deviations(extrapolated, exact_profile(config)), 0.0)
+STEPS = (1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6, 1e-6)
+STICKY = {"gamma": 1.0, "p": 3.0, "eps": 0.05}
 
 
-def report(label: str, figures: dict[str, float], seconds: float) -> None:
-    print(
-        f"{label:40s} L1/rho {figures['l1_dev_over_rho']:.4f}  chi2/bin {figures['chi2_per_dof']:6.2f}  "
-        f"contact ratio {figures['contact_ratio']:.3f} (chi2/bin {figures['contact_chi2_per_dof']:6.1f})  {seconds:6.1f} s",
-        flush=True,
+def case_config(case: str, dt: float, layer: str):
+    """The configuration of a case ("0.2", "0.5", "0.7": hard rods at that rho_bar sigma; "sticky")."""
+    model = {"n": 50, **STICKY} if case == "sticky" else {"n": round(float(case) * 200)}
+    config = rod_config(**model, length=100.0, sigma=0.5, dt=dt, replicas=16, bins=25, seed=11, contact_layer=layer, gap_bins=40)
+    return config.replace(gap_bins=max(40, config.contact_fit_bins()))
+
+
+def measure(case: str, dt: float, layer: str, duration: float) -> dict:
+    """One run: the deviations from the exact profile and the well contrast (mean and error over replicas)."""
+    config = case_config(case, dt, layer)
+    simulation = RodSimulation(config)
+    simulation.equilibrate(0.25)
+    c, steps = config.sampling, round(duration / dt)
+    rods, gaps = np.zeros((c.replicas, c.bins)), np.zeros((c.replicas, c.bins, c.gap_bins))
+    start = time.perf_counter()
+    simulation.advance(steps, (rods, gaps))
+    seconds = time.perf_counter() - start
+    scale = steps * config.model.length / c.bins  # sampled length per bin (lambda = 1)
+    rho = rods / scale
+    contact, contact_err = simulation._contact(gaps / (scale * c.gap_width))
+    profiles = RodProfiles(
+        (np.arange(c.bins) + 0.5) / c.bins, rho.mean(0), rho.std(0, ddof=1) / math.sqrt(c.replicas), contact, contact_err, steps
     )
+    exact = exact_profile(config)
+    figures = deviations(profiles, exact, contact=case != "sticky")
+    shape = exact.bin_means(c.bins) - config.model.mean_density
+    contrast = (rho - config.model.mean_density) @ shape / (shape @ shape)
+    figures.update(contrast=contrast.mean() - 1, contrast_err=contrast.std(ddof=1) / math.sqrt(c.replicas), seconds=seconds)
+    return figures
+
+
+def order(points: list[tuple[float, float, float]]) -> str:
+    """The slope of log |bias| against log dt over the points (dt, bias, error) with |bias| > 3 errors."""
+    resolved = [(dt, abs(bias)) for dt, bias, error in points if bias is not None and abs(bias) > 3 * error]
+    if len(resolved) < 2:
+        return f"not fitted ({len(resolved)} step(s) with a resolved bias)"
+    x, y = np.log([dt for dt, _ in resolved]), np.log([b for _, b in resolved])
+    slope = np.polyfit(x, y, 1)[0]
+    return f"q = {slope:.2f} over dt = {min(dt for dt, _ in resolved):g} .. {max(dt for dt, _ in resolved):g} ({len(resolved)} steps)"
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--layers", default="merge,bridge")
+    parser.add_argument("--steps", default=",".join(f"{dt:g}" for dt in STEPS))
+    parser.add_argument("--cases", default="0.2,0.5,0.7,sticky")
+    parser.add_argument("--time", type=float, default=None, help="sampled time (default 1.25 hard, 3 sticky)")
+    args = parser.parse_args()
+    steps = [float(value) for value in args.steps.split(",")]
+    print("| case | layer | dt | L1/rho | chi2/bin | contact / exact | contact chi2/bin | c - 1 | s |")
+    print("|---|---|---|---|---|---|---|---|---|", flush=True)
+    fits = []
+    for case in args.cases.split(","):
+        duration = args.time or (3.0 if case == "sticky" else 1.25)
+        for layer in args.layers.split(","):
+            points, contacts = [], []
+            for dt in steps:
+                f = measure(case, dt, layer, duration)
+                ratio = "-" if f.get("contact_ratio") is None else f"{f['contact_ratio']:.4f} ± {f['contact_ratio_err']:.4f}"
+                chi2 = "-" if f.get("contact_chi2_per_dof") is None else f"{f['contact_chi2_per_dof']:.2f}"
+                print(
+                    f"| {case} | {layer} | {dt:g} | {100 * f['l1_dev_over_rho']:.2f} % | {f['chi2_per_dof']:.2f} | {ratio} | {chi2} | "
+                    f"{f['contrast']:+.4f} ± {f['contrast_err']:.4f} | {f['seconds']:.0f} |",
+                    flush=True,
+                )
+                points.append((dt, f["contrast"], f["contrast_err"]))
+                if f.get("contact_ratio") is not None:
+                    contacts.append((dt, f["contact_ratio"] - 1, f["contact_ratio_err"]))
+            fits.append(f"{case}, {layer}: c - 1: {order(points)}" + (f"; contact ratio - 1: {order(contacts)}" if contacts else ""))
+    print("\nfitted order of |bias|:")
+    print("\n".join(fits))
 
 
 if __name__ == "__main__":
-    duration = float(sys.argv[1]) if len(sys.argv) > 1 else 1.25
-    for n in (40, 140):
-        study(n, duration)
+    main()

@@ -253,7 +253,8 @@ def advance_rods(positions, ring, stepping, external, pair_force, counts):
         members = np.empty(n, dtype=np.int64)
         stack = np.empty((2 * n + 2, 2), dtype=np.int64)
         heap_t, heap_i = np.empty(3 * n), np.empty(3 * n, dtype=np.int64)  # n, then 2 per merge (< n merges)
-        d, push, candidates, values = np.empty(n), np.empty(n), np.empty(n, dtype=np.int64), np.empty((n, 4))
+        d, push, candidates, values = np.empty(n), np.empty(n), np.empty(n, dtype=np.int64), np.empty((n, 5))
+        bridge = (push, candidates, values, np.full(n, -1, dtype=np.int64), np.empty(n, dtype=np.int64))  # contact.propagate
         for s in range(stepping.steps):
             key = fold_key(stream_key(stepping.seed, stepping.first_step + s, BCD), r)
             external(x, ring.field_params, forces)
@@ -271,11 +272,9 @@ def advance_rods(positions, ring, stepping, external, pair_force, counts):
             else:  # trial displacements mu F dt, then the hard core by exchanges (fricgen.rods.contact)
                 for i in range(n):
                     d[i] = mu * forces[i] * dt
-                count = propagate(x, d, length, sigma, variance, key, stepping.layer, (push, candidates, values))
+                count = propagate(x, d, length, sigma, variance, key, stepping.layer, bridge)
                 if stepping.layer == BRIDGE:  # the contact density from the local time at contact
-                    tally_local_time(
-                        (push, candidates, values), count, variance, 2.0 * stepping.gap_width / variance, ring.wavelength, gap_counts[r]
-                    )
+                    tally_local_time(bridge, count, variance, 2.0 * stepping.gap_width / variance, ring.wavelength, gap_counts[r])
             if status[r] == OK:
                 status[r] = _sample(x, ring, stepping.gap_width, rho_counts[r], gap_counts[r])
             if status[r] != OK:

@@ -16,7 +16,7 @@ from ..schema import Section, flat_fields
 
 #: Memory per rod and replica (positions and the BCD work arrays) and per histogram bin and replica
 #: (counts and the profiles derived from them), in bytes: upper estimates.
-BYTES_PER_ROD, BYTES_PER_BIN = 192, 32
+BYTES_PER_ROD, BYTES_PER_BIN = 224, 32
 #: How a step ends collisions (fricgen.rods.contact): BCD's inelastic merge (O(sqrt(dt))), elastic exchange, Brownian-bridge push.
 CONTACT_LAYERS = ("merge", "reflect", "bridge")
 
@@ -112,13 +112,20 @@ class RodNumerics(Section):
     """Time step ``dt``, noise ``seed``, ``start_sweeps`` Monte Carlo sweeps of the equilibrium start
     (fricgen.rods.mc), and the ``contact_layer`` that ends collisions within a step (fricgen.rods.contact):
     "bridge" (bias O(dt), docs/physics-bcd-contact-layer.md), "reflect" (O(dt) away from contact) or BCD's
-    own "merge" (O(sqrt(dt)), docs/physics.md#brownian-cluster-dynamics)."""
+    own "merge" (O(sqrt(dt)), docs/physics.md#brownian-cluster-dynamics). The default dt = 1e-4 keeps the
+    default study (N = 50, L = 100, U0 = 6, 16 rings, 1.25 time units) and the dense one (N = 140) within
+    error with the bridge layer; merge needs about 2.5e-6 there."""
 
     SECTION = "numerics"
-    dt: float = 2.5e-6
+    dt: float = 1e-4
     seed: int = 1
     start_sweeps: int = 2000
     contact_layer: str = "bridge"
+
+    @property
+    def error_order(self) -> float:
+        """q of the time-step bias O(dt^q) of the contact layer: 1/2 for merge, 1 for bridge and reflect."""
+        return 0.5 if self.contact_layer == "merge" else 1.0
 
     def __post_init__(self):
         self.require_positive("dt")

@@ -35,9 +35,9 @@ import numba
 from ..rng import fold_key, uniform
 
 MERGE, REFLECT, BRIDGE = 0, 1, 2  # the positions of their names in fricgen.rods.config.CONTACT_LAYERS
-BRIDGE_CUT = 40.0  # pairs with 2 a b / v above it touch with probability < exp(-40): no draw
+BRIDGE_CUT = 20.0  # pairs with 2 a b / v above it touch with probability < exp(-20) = 2e-9: no draw
 _BRIDGE_STREAM = 0x6272696467650001  # the bridge's uniforms: a sub-stream of the step's BCD key
-_SWEEPS = 200  # Gauss-Seidel sweeps of the bridge pushes of a chain (they converge in a few)
+_SWEEPS = 200  # at most this many solves per candidate in the chains' Gauss-Seidel (they need a few)
 _ROUNDING = 8.0 * 2.0**-52  # relative rounding of an exchange, x_i + sigma - L + L != x_i + sigma
 
 
@@ -79,14 +79,45 @@ def bridge_minimum(a, b, variance, e):
     return 0.5 * (a + b - math.sqrt((a - b) ** 2 + 2.0 * variance * e))
 
 
+@numba.njit(inline="always", cache=True)
+def _push(a, b, variance, u):
+    """max(0, -m) for the bridge from a to b with E = -ln(1 - u): zero unless the bridge touched, m < 0,
+    i.e. b <= 0 or E > t = 2 a b / v. u <= t / (1 + t) implies E <= u / (1 - u) <= t, which spares the
+    logarithm of most pairs that do not touch."""
+    if b > 0.0:
+        t = 2.0 * a * b / variance
+        if u <= t / (1.0 + t):
+            return 0.0
+        e = -math.log1p(-u)
+        if e <= t:
+            return 0.0
+    else:
+        e = -math.log1p(-u)
+    return -bridge_minimum(a, b, variance, e)
+
+
+@numba.njit(inline="always", cache=True)
+def _enqueue(neighbour, work, top):
+    """Put the candidate of pair ``neighbour`` (if it is one and not queued) on the stack; returns the new top."""
+    values, slots, stack = work[2], work[3], work[4]
+    k = slots[neighbour]
+    if k >= 0 and values[k, 4] == 0.0:
+        values[k, 4] = 1.0
+        stack[top] = k
+        top += 1
+    return top
+
+
 @numba.njit(cache=True)
 def _pushes(x, d, length, sigma, variance, bridge_key, work):
     """The bridge pushes p_i >= 0 of the pairs (i, i + 1) whose bridge may touch, solved for chains:
     p_i = max(0, -m_i), m_i the minimum of the bridge from a_i to b_i - (p_{i-1} + p_{i+1}) / 2 (the free end
-    shifted by the neighbours' pushes, each pair with its own variate E_i), by Gauss-Seidel sweeps over the
-    candidates (2 a_i b_i < BRIDGE_CUT variance) until no push changes by more than 1e-13 sigma.
-    work = (push, candidates, (a, b, E, x_i + a / 2) per candidate). Returns the number of candidates."""
-    push, candidates, values = work
+    shifted by the neighbours' pushes, each pair with its own variate E_i). The candidates
+    (2 a_i b_i < BRIDGE_CUT variance) get p_i from their own bridge; then a pair whose push changed by
+    more than 1e-10 sqrt(v) puts its neighbouring candidates on a stack to be solved again (Gauss-Seidel
+    on the chains only). work = (push, candidates, values: (a, b, u, x_i + a / 2, queued) per candidate,
+    slots: the candidate of each pair or -1 (all -1 between steps), stack). Returns the number of candidates."""
+    push, candidates, values, slots, stack = work
     n = x.size
     count = 0
     for i in range(n):
@@ -97,23 +128,32 @@ def _pushes(x, d, length, sigma, variance, bridge_key, work):
         a = (x[j] + length if j == 0 else x[j]) - x[i] - sigma
         b = a + d[j] - d[i]
         if 2.0 * a * b < BRIDGE_CUT * variance:
-            e = -math.log1p(-uniform(bridge_key, i))
-            candidates[count] = i
-            values[count, 0], values[count, 1], values[count, 2], values[count, 3] = a, b, e, x[i] + 0.5 * a
-            push[i] = max(0.0, -bridge_minimum(a, b, variance, e))
+            u = uniform(bridge_key, i)
+            candidates[count], slots[i] = i, count
+            values[count, 0], values[count, 1], values[count, 2], values[count, 3], values[count, 4] = a, b, u, x[i] + 0.5 * a, 0.0
+            push[i] = _push(a, b, variance, u)
             count += 1
-    for _ in range(_SWEEPS):  # chains: a pair's end moves with its neighbours' pushes
-        change = 0.0
-        for k in range(count):
-            i = candidates[k]
-            shift = push[i - 1 if i > 0 else n - 1] + push[_next(i, n)]
-            if shift > 0.0:
-                a, b = values[k, 0], values[k, 1] - 0.5 * shift
-                p = max(0.0, -bridge_minimum(a, b, variance, values[k, 2]))
-                change = max(change, abs(p - push[i]))
-                push[i] = p
-        if change <= 1e-13 * sigma:
+    top = 0
+    for k in range(count):
+        i = candidates[k]
+        if push[i] > 0.0:
+            top = _enqueue(i - 1 if i > 0 else n - 1, work, top)
+            top = _enqueue(_next(i, n), work, top)
+    for _ in range(_SWEEPS * count):  # chains: a pair's end moves with its neighbours' pushes
+        if top == 0:
             break
+        top -= 1
+        k = stack[top]
+        values[k, 4] = 0.0
+        i = candidates[k]
+        before, after = i - 1 if i > 0 else n - 1, _next(i, n)
+        p = _push(values[k, 0], values[k, 1] - 0.5 * (push[before] + push[after]), variance, values[k, 2])
+        if abs(p - push[i]) > 1e-10 * math.sqrt(variance):
+            top = _enqueue(before, work, top)
+            top = _enqueue(after, work, top)
+        push[i] = p
+    for k in range(count):
+        slots[candidates[k]] = -1
     return count
 
 
@@ -121,7 +161,8 @@ def _pushes(x, d, length, sigma, variance, bridge_key, work):
 def propagate(x, d, length, sigma, variance, key, layer, work):
     """Move rods by their trial displacements d and restore the hard core by the layer REFLECT or BRIDGE
     (module docstring); variance = 4 D dt of a gap's increment, key = this step's key of the replica,
-    work = (push, candidates, values): work arrays of n, n and n x 4 (see _pushes); after the step,
+    work = (push, candidates, values, slots, stack): work arrays of n, n x 5 for values, slots all -1 (see
+    _pushes); after the step,
     push[i] > 0 if and only if pair (i, i + 1) touched (bridge). Returns the number of bridge candidates."""
     n = x.size
     count = 0
@@ -140,44 +181,19 @@ def propagate(x, d, length, sigma, variance, key, layer, work):
 
 
 @numba.njit(cache=True)
-def erfcx(y):
-    """exp(y^2) erfc(y) for y >= 0: directly below 5, else Laplace's continued fraction
-    erfc(y) = exp(-y^2) / sqrt(pi) / (y + (1/2) / (y + 1 / (y + (3/2) / (y + ...)))) with 24 levels
-    (relative error below 1e-13 for y >= 5)."""
-    if y < 5.0:
-        return math.exp(y * y) * math.erfc(y)
-    f = y
-    for k in range(24, 0, -1):
-        f = y + 0.5 * k / f
-    return 1.0 / (math.sqrt(math.pi) * f)
-
-
-@numba.njit(cache=True)
-def expected_push(a, b, variance):
-    """E[max(0, -m)] for the minimum m of the bridge from a >= 0 to b (increment variance v): the
-    integral over z > 0 of P(m < -z) = min(1, exp(-2 (a + z)(b + z) / v)),
-    sqrt(pi v / 8) exp(-2 a b / v) erfcx((a + b) / sqrt(2 v)) for b >= 0, and
-    -b + sqrt(pi v / 8) erfcx((a - b) / sqrt(2 v)) for b < 0."""
-    scale = math.sqrt(math.pi * variance / 8.0)
-    if b >= 0.0:
-        return scale * math.exp(-2.0 * a * b / variance) * erfcx((a + b) / math.sqrt(2.0 * variance))
-    return -b + scale * erfcx((a - b) / math.sqrt(2.0 * variance))
-
-
-@numba.njit(cache=True)
 def tally_local_time(work, count, variance, weight, wavelength, tally):
-    """tally[bin of x_i + a / 2, 0] += weight E[push | a, b'] for each bridge candidate of the step (b' its
-    end shifted by the neighbours' pushes): the gap's local time at contact, whose rate is
-    (4 D / 2) rho_2(x, sigma+) per pair density (E[dL] = (var / 2) p(0) dt), so that with weight
-    2 w / v the tally counts like a gap bin of width w at the contact density. x_i + a / 2 is where the
+    """tally[bin of x_i + a / 2, 0] += weight p_i for each pushed pair of the step: the push is the gap's
+    local time at contact (the Skorokhod term), whose rate is E[dL] = (v / (2 dt)) p(0) dt = 2 D rho_2(x, sigma+) dt
+    per pair density, so that with weight 2 w / v the tally counts like a gap bin of width w at the
+    contact density. x_i + a / 2 is where the
     left rod touches if the pair's centre stays (the centre moves independently of the gap, by O(dt)
     on average); the start x_i would shift rho_2(x) by O(sqrt(dt))."""
-    push, candidates, values = work
-    n, bins = push.size, tally.shape[0]
+    push, candidates, values = work[0], work[1], work[2]
+    bins = tally.shape[0]
     for k in range(count):
-        i = candidates[k]
-        shift = push[i - 1 if i > 0 else n - 1] + push[_next(i, n)]
-        expected = expected_push(values[k, 0], values[k, 1] - 0.5 * shift, variance)
+        p = push[candidates[k]]
+        if p == 0.0:
+            continue
         phase = values[k, 3] / wavelength
         b = int((phase - math.floor(phase)) * bins)
-        tally[b if b < bins else 0, 0] += weight * expected
+        tally[b if b < bins else 0, 0] += weight * p

@@ -25,9 +25,10 @@ _F, _I = types.float64, types.int64
 
 
 @numba.njit(inline="always", cache=True)
-def _energy(x, left, right, ring, external, pair):
-    """U(x) plus the pair energies with the rods at ``left`` and ``right`` (positions, unwrapped)."""
-    energy = external(x, ring.field_params)
+def _energy(field, x, left, right, ring, pair):
+    """The field energy ``field`` = U(x) plus the pair energies with the rods at ``left`` and ``right``
+    (positions, unwrapped)."""
+    energy = field
     if ring.pair_on:
         reach = ring.sigma + ring.pair_range
         if x - left < reach:
@@ -41,12 +42,16 @@ def _energy(x, left, right, ring, external, pair):
 def metropolis_sweeps(positions, ring, external, pair, sweeps, first_sweep, seed):
     """``sweeps`` sweeps over all rods of every replica (rows of ``positions``, ordered, unwrapped;
     rod 0 follows rod N-1 at x_{N-1} - L). ``external(x)`` and ``pair(r)`` are energies, the pair one
-    used for centre distances r < sigma + pair_range. Returns the acceptance ratio."""
+    used for centre distances r < sigma + pair_range; U(x_i) is kept per rod between its moves (one
+    field evaluation per move). Returns the acceptance ratio."""
     length, sigma, kT = ring.length, ring.sigma, ring.kT
     replicas, n = positions.shape
     accepted = np.zeros(replicas)
     for r in numba.prange(replicas):
         x = positions[r]
+        field = np.empty(n)
+        for i in range(n):
+            field[i] = external(x[i], ring.field_params)
         for s in range(sweeps):
             key = fold_key(stream_key(seed, first_sweep + s, MONTE_CARLO), r)
             for i in range(n):
@@ -56,9 +61,10 @@ def metropolis_sweeps(positions, ring, external, pair, sweeps, first_sweep, seed
                 if free <= 0.0:
                     continue
                 trial = left + sigma + free * uniform(key, 2 * i)
-                old = _energy(x[i], left, right, ring, external, pair)
-                new = _energy(trial, left, right, ring, external, pair)
+                trial_field = external(trial, ring.field_params)
+                old = _energy(field[i], x[i], left, right, ring, pair)
+                new = _energy(trial_field, trial, left, right, ring, pair)
                 if new <= old or uniform(key, 2 * i + 1) < math.exp((old - new) / kT):
-                    x[i] = trial
+                    x[i], field[i] = trial, trial_field
                     accepted[r] += 1.0
     return accepted.sum() / max(1, replicas * n * sweeps)

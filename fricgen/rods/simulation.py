@@ -176,10 +176,11 @@ class RodSimulation:
         return extrapolate(*np.moveaxis(total / samples, -1, 0)), error
 
 
-def extrapolate_to_zero_dt(coarse: RodProfiles, fine: RodProfiles, ratio: float) -> RodProfiles:
-    """Remove the O(sqrt(dt)) BCD bias from runs at dt and dt / ratio: X(0) = (r X_fine - X_coarse) / (r - 1),
-    r = sqrt(ratio) (Richardson in sqrt(dt); errors added in quadrature)."""
-    r = math.sqrt(ratio)
+def extrapolate_to_zero_dt(coarse: RodProfiles, fine: RodProfiles, ratio: float, order: float = 0.5) -> RodProfiles:
+    """Remove a bias of O(dt^order) from runs at dt and dt / ratio: X(0) = (r X_fine - X_coarse) / (r - 1),
+    r = ratio^order (Richardson; errors added in quadrature). order = RodNumerics.error_order: 1/2 for BCD's
+    merge layer, 1 for bridge and reflect."""
+    r = ratio**order
 
     def combine(a, b):
         return (r * b - a) / (r - 1)

@@ -349,7 +349,7 @@ bcd --bins 1000000000 | --bins | of memory, more than this machine has
 bcd --gap-width 0 | --gap-width | must be positive
 bcd --gap-width nan | --gap-width | got nan
 bcd --gap-bins 0 | --gap-bins | must be >= 1
-bcd --contact-layer merge --gap-bins 5 | --gap-bins | the contact fit needs 11
+bcd --contact-layer merge --gap-bins 5 | --gap-bins | the contact fit needs 21
 bcd --fit-bins 1 | --fit-bins | must be >= 2
 bcd --start-sweeps -1 | --start-sweeps | must be >= 0
 bcd --time 0 | --time | must be positive

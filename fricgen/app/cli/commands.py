@@ -303,7 +303,7 @@ def parser() -> argparse.ArgumentParser:
     _add_rod_flags(bcd)
     bcd.add_argument("--time", type=float, default=1.25, help="sampled time per replica (default 1.25)")
     bcd.add_argument("--equilibrate", type=float, default=0.25, help="BCD time after the Monte Carlo start, before sampling (default 0.25)")
-    bcd.add_argument("--extrapolate", action="store_true", help="also run at dt/4 and extrapolate to dt = 0 in sqrt(dt)")
+    bcd.add_argument("--extrapolate", action="store_true", help="also run at dt/4 and extrapolate to dt = 0 (in dt; in sqrt(dt) for merge)")
     bcd.add_argument("--out", default="fricgen-bcd", metavar="DIR", help="output folder (default fricgen-bcd)")
     bcd.add_argument("--force", action="store_true", help="replace the result that --out holds already")
     bcd.add_argument("--json", action="store_true", help="print the summary as JSON")

@@ -88,7 +88,7 @@ def study(plan: Study, out: Path, force: bool = False) -> dict:
     measured = _sample(config, duration, equilibration)
     if extrapolate:
         fine = _sample(config.replace(dt=config.numerics.dt / REFINEMENT), duration, equilibration)
-        measured = extrapolate_to_zero_dt(measured, fine, REFINEMENT)
+        measured = extrapolate_to_zero_dt(measured, fine, REFINEMENT, config.numerics.error_order)
     seconds = time.perf_counter() - start
     with np.errstate(divide="ignore", invalid="ignore"):
         compared = deviations(measured, exact, contact=config.model.hard_rods)
