@@ -19,34 +19,21 @@ import pytest
 from fricgen.app.cli import main
 
 from .cases import FILES, argv, cases
+from .traps import Started, stop, trap_simulations
 
 CASES = cases()
-
-
-class Started(AssertionError):
-    """A bad-input case got as far as a simulation or a derivation."""
-
-
-def _trap(*args, **kwargs):
-    raise Started("a bad-input case started a simulation or a derivation")
 
 
 @pytest.fixture(autouse=True)
 def trap(monkeypatch):
     """Simulations (Langevin runs, the run command's execution, the rods' Monte Carlo start) and the
     symbolic layer's derivations raise Started."""
-    import fricgen.app.run.runner
-    import fricgen.langevin.simulation
-    import fricgen.rods.simulation
-
-    monkeypatch.setattr(fricgen.langevin.simulation.Simulation, "run", _trap)
-    monkeypatch.setattr(fricgen.rods.simulation.RodSimulation, "__init__", _trap)
-    monkeypatch.setattr(fricgen.app.run.runner, "execute", _trap)
+    trap_simulations(monkeypatch)
     fakes = {
-        "fricgen.derive.driver": {"generate": _trap, "verify": _trap, "GENERATED": Path("generated")},
-        "fricgen.derive.noise.derivation": {"derive_noise": _trap},
-        "fricgen.derive.noise.verification": {"verify": _trap},
-        "fricgen.derive.law.laws": {"catalogue": _trap, "load_law": _trap},
+        "fricgen.derive.driver": {"generate": stop, "verify": stop, "GENERATED": Path("generated")},
+        "fricgen.derive.noise.derivation": {"derive_noise": stop},
+        "fricgen.derive.noise.verification": {"prove": stop},
+        "fricgen.derive.law.laws": {"catalogue": stop, "load_law": stop},
     }
     for name, attributes in fakes.items():
         monkeypatch.setitem(sys.modules, name, types.SimpleNamespace(**attributes))

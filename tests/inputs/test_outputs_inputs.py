@@ -21,27 +21,14 @@ import pytest
 from fricgen.app.cli import main
 
 from .outputs_cases import argv, build, rows
+from .traps import Started, trap_simulations
 
 ROWS = rows()
 
 
-class Started(AssertionError):
-    """A case got as far as a simulation."""
-
-
-def _trap(*args, **kwargs):
-    raise Started("an outputs case started a simulation")
-
-
 @pytest.fixture(autouse=True)
 def trap(monkeypatch):
-    import fricgen.app.run.runner
-    import fricgen.langevin.simulation
-    import fricgen.rods.simulation
-
-    monkeypatch.setattr(fricgen.langevin.simulation.Simulation, "run", _trap)
-    monkeypatch.setattr(fricgen.rods.simulation.RodSimulation, "__init__", _trap)
-    monkeypatch.setattr(fricgen.app.run.runner, "execute", _trap)
+    trap_simulations(monkeypatch)
 
 
 @pytest.fixture(scope="module")

@@ -18,35 +18,23 @@ from fricgen.derive.law import manifests
 from fricgen.kernels import load_law_kernels
 
 from .cases import argv
+from .traps import stop, trap_simulations
 from .trust_cases import GOOD, build, rows
 
 ROWS = rows()
 
 
-class Started(AssertionError):
-    """A case got as far as a simulation or a derivation."""
-
-
-def _trap(*args, **kwargs):
-    raise Started("a trust case started a simulation or a derivation")
-
-
 @pytest.fixture(autouse=True)
 def trap(monkeypatch):
-    import fricgen.app.run.runner
     import fricgen.derive.driver
     import fricgen.derive.noise.derivation
     import fricgen.derive.noise.verification
-    import fricgen.langevin.simulation
-    import fricgen.rods.simulation
 
-    monkeypatch.setattr(fricgen.langevin.simulation.Simulation, "run", _trap)
-    monkeypatch.setattr(fricgen.rods.simulation.RodSimulation, "__init__", _trap)
-    monkeypatch.setattr(fricgen.app.run.runner, "execute", _trap)
-    monkeypatch.setattr(fricgen.derive.noise.derivation, "derive_noise", _trap)
-    monkeypatch.setattr(fricgen.derive.noise.verification, "prove", _trap)
+    trap_simulations(monkeypatch)
+    monkeypatch.setattr(fricgen.derive.noise.derivation, "derive_noise", stop)
+    monkeypatch.setattr(fricgen.derive.noise.verification, "prove", stop)
     for name in ("derive_noise", "verify", "verified_models"):
-        monkeypatch.setattr(fricgen.derive.driver, name, _trap)
+        monkeypatch.setattr(fricgen.derive.driver, name, stop)
 
 
 @pytest.fixture(scope="module")
