@@ -30,6 +30,7 @@ from ...langevin.system import (
     random_positions,
     thermal_state,
 )
+from .checkpoints import check_checkpoint
 from .config import RunConfig, check_fraction, slab_half_height
 
 
@@ -90,13 +91,11 @@ def initial_state(c: RunConfig, particles: Particles, box: np.ndarray) -> State:
     refuse = functools.partial(ConfigError, "system.initial")
     if c.walls is not None:
         raise refuse("a start from a checkpoint is for runs without walls", "leave it out, or remove [walls]")
-    try:
-        with np.load(path) as data:
-            stored = {k: np.array(data[k]) for k in ("position", "orientation", "radius", "mobile", "box", "dim")}
-    except (OSError, ValueError, KeyError) as error:
-        raise refuse(f"cannot read {path} as a checkpoint ({error})", "give the checkpoint.npz of a run") from error
+    check_checkpoint(path, "system.initial")  # whole, finite, of fricgen run
+    with np.load(path, allow_pickle=False) as data:
+        stored = {k: np.array(data[k]) for k in ("position", "orientation", "radius", "mobile", "box", "dim")}
     n = particles.radius.size
-    same = int(stored["dim"]) == dim and stored["radius"].shape == (n,) and stored["position"].shape == (n, 3)
+    same = int(stored["dim"]) == dim and stored["radius"].shape == (n,)  # positions: one per radius (check_checkpoint)
     same = same and bool(stored["mobile"].all()) and np.array_equal(stored["radius"], particles.radius)
     same = same and np.allclose(stored["box"], box, rtol=1e-12, atol=0.0)
     if not same:
@@ -105,8 +104,6 @@ def initial_state(c: RunConfig, particles: Particles, box: np.ndarray) -> State:
             f"{path} holds {held}, not {n} mobile particles of radius {c.system.radius} in {np.round(box, 4).tolist()}",
             "give the same system as the run that wrote it",
         )
-    if not (np.isfinite(stored["position"]).all() and np.isfinite(stored["orientation"]).all()):
-        raise refuse(f"{path} holds positions or body axes that are not finite", "give the checkpoint of a run that did not blow up")
     state = thermal_state(particles, stored["position"], box, dim, c.thermostat.kT, c.run.seed)
     state.orientation[:] = stored["orientation"]
     return state
