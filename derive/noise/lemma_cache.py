@@ -37,11 +37,11 @@ from pathlib import Path
 import sympy as sp
 
 from ..calculus import Calculus
-from ..law import symbols
+from ..law import manifests, symbols
 from ..law.lawdata import GENERATOR_VERSION, read_regular
 from . import phase_space
 
-CACHE_ENV = "FRICGEN_CACHE"
+CACHE_ENV = manifests.CACHE_ENV
 #: The sources whose bytes key the cache (besides the generator and SymPy versions).
 SOURCES = (Path(phase_space.__file__), Path(symbols.__file__), Path(__file__))
 #: Largest entry read, in bytes (an entry is about 200).
@@ -52,16 +52,9 @@ IDENTITIES = {2: ("sigma_hat",), 3: ("sigma_hat", "random_force")}
 
 def cache_folder() -> Path | None:
     """The folder of the cache entries; None when the cache is switched off (FRICGEN_CACHE=off)."""
-    chosen = os.environ.get(CACHE_ENV)
-    if chosen:
-        return None if chosen.strip().lower() == "off" else Path(chosen).expanduser()
-    base = os.environ.get("XDG_CACHE_HOME")
-    if not base:
-        try:
-            base = Path.home() / ".cache"
-        except RuntimeError:  # no home folder to be found: no cache
-            return None
-    return Path(base) / "fricgen"
+    if os.environ.get(CACHE_ENV, "").strip().lower() == "off":
+        return None
+    return manifests.cache_root()
 
 
 @cache

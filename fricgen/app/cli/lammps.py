@@ -120,7 +120,7 @@ def plugin_folder(law: str) -> Path:
 
     catalogue = find_law(law).parent
     if is_built_in(catalogue) and not source_checkout():
-        return Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "fricgen" / "lammps-sources" / law
+        return _cache_home() / "fricgen" / "lammps-sources" / law
     return kernel_folder(catalogue) / "lammps" / law
 
 
@@ -181,8 +181,12 @@ def sources_hash(folder: Path, lammps: Lammps) -> str:
 
 def default_build_folder(law: str, digest: str) -> Path:
     """$XDG_CACHE_HOME/fricgen/lammps/<law>-<hash> (~/.cache by default): outside the sources and git."""
-    cache = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache")
-    return cache / "fricgen" / "lammps" / f"{law}-{digest[:16]}"
+    return _cache_home() / "fricgen" / "lammps" / f"{law}-{digest[:16]}"
+
+
+def _cache_home() -> Path:
+    """$XDG_CACHE_HOME, else ~/.cache: where the plugin's sources of a built-in law and its builds go."""
+    return Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache")
 
 
 STAMP = "fricgen-sources.sha256"
