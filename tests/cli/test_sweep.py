@@ -9,13 +9,17 @@ import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import psutil
 import pytest
 
 from fricgen.app.cli import main
 from fricgen.app.run.config import parse_override
+from fricgen.app.run.runner import check_run
 from fricgen.app.sweep.config import load_sweep, setting, sweep_names
+
+ROOT = Path(__file__).resolve().parents[2]
 
 #: Overrides that make a passive point a run of a second (N = 64); STEPS is added per test.
 SMALL = """
@@ -117,6 +121,17 @@ def test_the_bundled_mips_sweep_is_fig_8_in_small():
     assert sweep_names() == ["mips"] and mips.base == "active"
     assert [(axis.name, len(axis.values)) for axis in mips.axes] == [("active.force", 3), ("system.packing_fraction", 3), ("model", 3)]
     assert mips.points()[0].settings[-1] == "law.friction=false" and mips.plot.color == "mips.phase_separated"
+
+
+@pytest.mark.parametrize("path", sorted((ROOT / "docs" / "studies").glob("*.toml")), ids=lambda path: path.stem)
+def test_every_study_of_the_docs_checks_point_by_point(path):
+    """The study files the docs report on (docs/studies/*.toml) load, and every point's run
+    configuration passes fricgen run's checks, so a reader's `fricgen sweep` does not fail at a late point."""
+    study = load_sweep(str(path))
+    points = study.points()
+    assert len(points) == len({point.name for point in points}) > 1
+    for point in points:
+        assert check_run(study.base, list(point.settings), ()).run.steps > 0
 
 
 @pytest.fixture(scope="module")
