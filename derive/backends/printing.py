@@ -17,6 +17,8 @@ call (Coulomb–Newton's D holds both).
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import sympy as sp
 from sympy.codegen.cfunctions import expm1
 from sympy.printing.pycode import PythonCodePrinter
@@ -158,6 +160,53 @@ class KernelPrinter(PythonCodePrinter):
 
     def _print_Float(self, expr):
         return repr(float(expr))
+
+
+# --- kernel bodies: one shape, each backend's syntax ---------------------------------------------
+
+
+@dataclass(frozen=True)
+class Syntax:
+    """How a backend's language spells a kernel body: templates with ``{name}``, ``{value}`` and
+    ``{condition}``, and one level of indentation."""
+
+    indent: str
+    assign: str  #: a common subexpression
+    give: str  #: the function's result
+    first_branch: str  #: opens the first branch of a Piecewise
+    next_branch: str  #: opens each later branch
+    close: str | None  #: closes a branch (None where indentation does)
+    nan: str  #: no branch holds
+    guard: tuple[str, ...]  #: the lines of ``return {value}`` at u <= 0
+
+
+def statements(expr: sp.Expr, printer, syntax: Syntax, depth: int) -> list[str]:
+    """CSE assignments and the result of one branch, ``depth`` levels in."""
+    replacements, reduced = branch_cse(expr)
+    pad = syntax.indent * depth
+    lines = [pad + syntax.assign.format(name=printer.doprint(name), value=printer.doprint(value)) for name, value in replacements]
+    return [*lines, pad + syntax.give.format(value=printer.doprint(reduced))]
+
+
+def body(expr: sp.Expr, printer, syntax: Syntax) -> list[str]:
+    """A kernel's body: a top-level Piecewise becomes branches, each with its own CSE."""
+    if not isinstance(expr, sp.Piecewise):
+        return statements(expr, printer, syntax, 1)
+    lines, pad = [], syntax.indent
+    for k, (branch, condition) in enumerate(expr.args):
+        if condition == sp.true:
+            return [*lines, *statements(branch, printer, syntax, 1)]
+        opening = (syntax.next_branch if k else syntax.first_branch).format(condition=printer.doprint(condition))
+        lines += [pad + opening, *statements(branch, printer, syntax, 2), *([pad + syntax.close] if syntax.close else [])]
+    return [*lines, pad + syntax.give.format(value=syntax.nan)]
+
+
+def zero_speed_guard(limit: sp.Expr | None, printer, syntax: Syntax) -> list[str]:
+    """The guard ``u <= 0 -> <limit u -> 0+>`` (0 if infinite or unknown); nothing for None (:func:`zero_speed_limit`)."""
+    if limit is None:
+        return []
+    value = printer.doprint(fold_constants(limit if limit.is_finite else sp.Integer(0)))
+    return [syntax.indent + line.format(value=value) for line in syntax.guard]
 
 
 # --- formulas in docstrings ----------------------------------------------------------------------

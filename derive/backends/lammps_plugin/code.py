@@ -21,12 +21,23 @@ from ...law.laws import FrictionLaw
 from ...law.potentials import PAIR_POTENTIALS, Potential
 from ...law.symbols import s, u
 from ...noise.derivation import NoiseModel, switches
-from ..printing import branch_cse, compact, cut, equation, fold_constants, stabilize, zero_speed_limit, zero_speed_note
+from ..printing import Syntax, body, compact, cut, equation, fold_constants, stabilize, zero_speed_guard, zero_speed_limit, zero_speed_note
 from ..special_functions import special_namespace
 from ..tables import table_factor
 from .table_code import table_builder, tabled_amplitude
 
 INDENT = "  "
+#: C++'s spelling of a kernel body (printing.body): a Piecewise as a chain of ``if`` blocks.
+SYNTAX = Syntax(
+    indent=INDENT,
+    assign="const double {name} = {value};",
+    give="return {value};",
+    first_branch="if ({condition}) {{",
+    next_branch="if ({condition}) {{",
+    close="}",
+    nan="NAN",
+    guard=("if (u <= 0.0) return {value};",),
+)
 #: C++ parameter lists of the kernel signatures (the Python kernels' argument names, as in the Numba backend's SIGNATURES).
 SIGNATURES = {
     "r, params": "double r, const double *params",
@@ -99,39 +110,10 @@ def comment(text: str, indent: str = "") -> str:
     return "".join(line + (" (continued)" if line.endswith("\\") else "") + "\n" for line in lines)
 
 
-# --- bodies ------------------------------------------------------------------------------------
-
-
-def _statements(expr: sp.Expr, printer: CxxKernelPrinter, depth: int) -> list[str]:
-    replacements, reduced = branch_cse(expr)
-    pad = INDENT * depth
-    lines = [f"{pad}const double {printer.doprint(name)} = {printer.doprint(value)};" for name, value in replacements]
-    return [*lines, f"{pad}return {printer.doprint(reduced)};"]
-
-
-def _body(expr: sp.Expr, printer: CxxKernelPrinter) -> list[str]:
-    """A top-level Piecewise becomes ``if`` branches, each with its own CSE (as fricgen.derive.backends.numba_kernels.kernel_code.body)."""
-    if not isinstance(expr, sp.Piecewise):
-        return _statements(expr, printer, 1)
-    lines = []
-    for branch, condition in expr.args:
-        if condition == sp.true:
-            return [*lines, *_statements(branch, printer, 1)]
-        lines += [f"{INDENT}if ({printer.doprint(condition)}) {{", *_statements(branch, printer, 2), f"{INDENT}}}"]
-    return [*lines, f"{INDENT}return NAN;"]
-
-
-def _guard(limit: sp.Expr | None) -> list[str]:
-    """``if (u <= 0.0) return <limit u -> 0+>;`` (0 if infinite or unknown); nothing for None (printing.zero_speed_limit)."""
-    if limit is None:
-        return []
-    value = limit if limit.is_finite else sp.Integer(0)
-    return [f"{INDENT}if (u <= 0.0) return {CxxKernelPrinter().doprint(fold_constants(value))};"]
-
-
-def kernel(name: str, args: str, expr: sp.Expr, doc: str, parameters: list[sp.Symbol], guard: list[str] = ()) -> str:
+def kernel(name: str, args: str, expr: sp.Expr, doc: str, parameters: list[sp.Symbol], at_zero: sp.Expr | None = None) -> str:
     """One C++ function: the parameters it uses read from ``params``, then the printed expression."""
     printer = CxxKernelPrinter()
+    guard = zero_speed_guard(at_zero, printer, SYNTAX)  # at u <= 0, the limit u -> 0+ (zero_speed_limit)
     expr = fold_constants(stabilize(expr))
     used = {x.name for x in expr.free_symbols}
     unpack = [f"{INDENT}const double {printer.doprint(p)} = params[{k}];" for k, p in enumerate(parameters) if p.name in used]
@@ -140,7 +122,8 @@ def kernel(name: str, args: str, expr: sp.Expr, doc: str, parameters: list[sp.Sy
     for arg in ("u", "w", "r", "mu", "kT"):
         if arg in args.split(", ") and arg not in used and not (arg == "u" and guard):
             unpack.append(f"{INDENT}(void) {arg};")
-    lines = [comment(doc).rstrip("\n"), f"inline double {name}({SIGNATURES[args]})", "{", *unpack, *guard, *_body(expr, printer), "}"]
+    signature = f"inline double {name}({SIGNATURES[args]})"
+    lines = [comment(doc).rstrip("\n"), signature, "{", *unpack, *guard, *body(expr, printer, SYNTAX), "}"]
     return "\n".join(lines) + "\n"
 
 
@@ -161,7 +144,7 @@ def law_kernels(law: FrictionLaw, model: NoiseModel, order: int) -> str:
     ratio = sp.piecewise_fold((law.friction / u).rewrite(sp.Piecewise))
     at_zero = zero_speed_limit(ratio)
     doc = equation("f/u", ratio, f"the factor of the tangential velocity{zero_speed_note(at_zero)}", "")
-    parts.append(kernel("friction_over_u", "u, w, r, params", ratio, doc, params, _guard(at_zero)))
+    parts.append(kernel("friction_over_u", "u, w, r, params", ratio, doc, params, at_zero))
     c, a = model.calculus.value, compact(model.variance_scale)
     args = "u, w, r, mu, kT, params"
     if model.closed_form:
@@ -169,7 +152,7 @@ def law_kernels(law: FrictionLaw, model: NoiseModel, order: int) -> str:
         at_zero = None if at_zero is sp.nan else at_zero
         how = "D = f/u as nu = 0" if a == 0 else f"(F-22) in closed form with kT nu = {a}"
         doc = equation("D(u)", model.amplitude, f"the {c} calculus: {how}{zero_speed_note(at_zero)}", "")
-        parts.append(kernel(f"noise_amplitude_{c}", args, model.amplitude, doc, params, _guard(at_zero)))
+        parts.append(kernel(f"noise_amplitude_{c}", args, model.amplitude, doc, params, at_zero))
         return "\n".join(parts)
     cuts = switches(law.friction)
     for k, g in enumerate(cuts):

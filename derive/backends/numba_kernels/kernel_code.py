@@ -1,5 +1,5 @@
 """The text of Numba kernels, piece by piece: decorators and signatures (the kernel ABI), headers and
-docstrings, branches as ``if`` statements, the guards at u = 0, and the quadrature of (F-22).
+docstrings, Python's spelling of branches and of the guards at u = 0 (:data:`SYNTAX`), and the quadrature of (F-22).
 
 :mod:`.modules` assembles modules from these pieces (and prints each expression through its
 ``_kernel``, which applies the stable rewrites of :mod:`..printing`). Nothing here imports Numba:
@@ -10,10 +10,8 @@ from __future__ import annotations
 
 import math
 
-import sympy as sp
-
 from ...law.lawdata import Interval
-from ..printing import KernelPrinter, branch_cse, fold_constants
+from ..printing import Syntax
 
 #: Every kernel is inlined into the kernels that call it (contact_<c> -> noise_amplitude_<c> ->
 #: _gaussian_tail ...): a compiled call that passes ``params`` on holds a reference to it, two atomic
@@ -35,6 +33,17 @@ SIGNATURES = {
 TABULATE_SIGNATURE = "float64[::1](float64[::1], float64, float64[::1])"
 CONTACT_SIGNATURE = "UniTuple(float64, 2)(float64, float64, float64, float64, float64, float64[::1])"
 INDENT = "    "
+#: Python's spelling of a kernel body (printing.body).
+SYNTAX = Syntax(
+    indent=INDENT,
+    assign="{name} = {value}",
+    give="return {value}",
+    first_branch="if {condition}:",
+    next_branch="elif {condition}:",
+    close=None,
+    nan="math.nan",
+    guard=("if u <= 0.0:", INDENT + "return {value}"),
+)
 
 
 def decorator(args: str, signature: str | None = None) -> str:
@@ -53,41 +62,6 @@ def ranges_literal(ranges: list[Interval]) -> str:
 
     items = [f"({end(i.lower)}, {end(i.upper)}, {i.lower_closed}, {i.upper_closed})" for i in ranges]
     return "(" + ", ".join(items) + ("," if len(items) == 1 else "") + ")"
-
-
-# --- bodies ------------------------------------------------------------------------------------
-
-
-def statements(expr: sp.Expr, printer: KernelPrinter, depth: int) -> list[str]:
-    """CSE assignments and the return of one branch."""
-    replacements, reduced = branch_cse(expr)
-    pad = INDENT * depth
-    lines = [f"{pad}{printer.doprint(name)} = {printer.doprint(value)}" for name, value in replacements]
-    return [*lines, f"{pad}return {printer.doprint(reduced)}"]
-
-
-def body(expr: sp.Expr, printer: KernelPrinter) -> list[str]:
-    """A top-level Piecewise becomes if/elif/else branches, each with its own CSE."""
-    if not isinstance(expr, sp.Piecewise):
-        return statements(expr, printer, 1)
-    lines = []
-    for k, (branch, condition) in enumerate(expr.args):
-        if condition == sp.true:
-            return [*lines, *statements(branch, printer, 1)]
-        keyword = "if" if k == 0 else "elif"
-        lines += [f"{INDENT}{keyword} {printer.doprint(condition)}:", *statements(branch, printer, 2)]
-    return [*lines, f"{INDENT}return math.nan"]
-
-
-# --- u = 0 ---------------------------------------------------------------------------------------
-
-
-def zero_speed_guard(limit: sp.Expr | None) -> list[str]:
-    """``if u <= 0.0: return <limit u -> 0+>`` (0 if infinite or unknown); nothing for None (see zero_speed_limit)."""
-    if limit is None:
-        return []
-    value = limit if limit.is_finite else sp.Integer(0)
-    return [f"{INDENT}if u <= 0.0:", f"{INDENT * 2}return {KernelPrinter().doprint(fold_constants(value))}"]
 
 
 # --- the quadrature of (F-22) ------------------------------------------------------------------------

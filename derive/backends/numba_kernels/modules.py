@@ -22,6 +22,7 @@ from ...noise.derivation import NoiseModel, switches
 from ..printing import (
     FORMULA_LIMIT,
     KernelPrinter,
+    body,
     compact,
     cut,
     equation,
@@ -29,6 +30,7 @@ from ..printing import (
     header,
     short_formula,
     stabilize,
+    zero_speed_guard,
     zero_speed_limit,
     zero_speed_note,
 )
@@ -38,15 +40,14 @@ from .kernel_code import (
     CONTACT_SIGNATURE,
     FIELD_KERNEL,
     INDENT,
+    SYNTAX,
     TABLE_KERNEL,
     TABLED_AMPLITUDE,
     TABULATE_KERNEL,
     TABULATE_SIGNATURE,
-    body,
     quote_doc,
     ranges_literal,
     tail_kernels,
-    zero_speed_guard,
 )
 from .kernel_code import decorator as _decorator
 
@@ -57,14 +58,15 @@ QUADRATURE_ORDER = 10
 # --- functions ---------------------------------------------------------------------------------
 
 
-def _kernel(name: str, args: str, expr: sp.Expr, doc: str, parameters: list[sp.Symbol], guard: list[str] = ()) -> str:
+def _kernel(name: str, args: str, expr: sp.Expr, doc: str, parameters: list[sp.Symbol], at_zero: sp.Expr | None = None) -> str:
     """One Numba function: unpack the parameters it uses, then the printed expression."""
     printer = KernelPrinter()
+    guard = zero_speed_guard(at_zero, printer, SYNTAX)  # at u <= 0, the limit u -> 0+ (zero_speed_limit)
     expr = fold_constants(stabilize(expr))
     used = {x.name for x in expr.free_symbols}
     unpack = [f"{INDENT}{printer.doprint(p)} = params[{k}]" for k, p in enumerate(parameters) if p.name in used]
     docstring = INDENT + quote_doc(doc.replace("\n", "\n" + INDENT))
-    lines = [_decorator(args), f"def {name}({args}):", docstring, *unpack, *guard, *body(expr, printer)]
+    lines = [_decorator(args), f"def {name}({args}):", docstring, *unpack, *guard, *body(expr, printer, SYNTAX)]
     return "\n".join(lines) + "\n"
 
 
@@ -126,7 +128,7 @@ def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, sou
     ratio = sp.piecewise_fold((law.friction / u).rewrite(sp.Piecewise))
     at_zero = zero_speed_limit(ratio)
     doc = equation("f/u", ratio, f"the factor of the tangential velocity{zero_speed_note(at_zero)}")
-    functions.append(_kernel("friction_over_u", "u, w, r, params", ratio, doc, params, zero_speed_guard(at_zero)))
+    functions.append(_kernel("friction_over_u", "u, w, r, params", ratio, doc, params, at_zero))
     if needs_quadrature:
         cuts = switches(law.friction)
         for k, g in enumerate(cuts):
@@ -147,7 +149,7 @@ def law_module(law: FrictionLaw, models: dict[str, NoiseModel], digest: str, sou
             at_zero = None if at_zero is sp.nan else at_zero  # no limit known: D is evaluated at u = 0 as it stands
             how = "D = f/u as nu = 0" if a == 0 else f"(F-22) in closed form with kT nu = {a}"
             doc = equation("D(u)", model.amplitude, f"the {c} calculus: {how}{zero_speed_note(at_zero)}")
-            functions.append(_kernel(f"noise_amplitude_{c}", args, model.amplitude, doc, params, zero_speed_guard(at_zero)))
+            functions.append(_kernel(f"noise_amplitude_{c}", args, model.amplitude, doc, params, at_zero))
         else:
             doc = (
                 f"D(u) = (1/a) int_u^oo f(s) exp(-(s**2 - u**2)/(2*a)) ds (F-22), a = kT nu = {a} ({c} calculus),\n"
