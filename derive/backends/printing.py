@@ -1,5 +1,6 @@
-"""SymPy printing for Numba kernels: numerically stable rewrites, a Python printer subclass, and the
-formulas in the kernels' docstrings (:func:`equation`).
+"""SymPy printing shared by the backends: numerically stable rewrites, a Python printer subclass, the
+shape of a kernel body in any language's :class:`Syntax` (branches, common subexpressions, the guard
+at u = 0), and the formulas in the kernels' docstrings (:func:`equation`).
 
 Rewrites (exact identities, applied before printing):
 
