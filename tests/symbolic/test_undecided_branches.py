@@ -96,12 +96,6 @@ def test_a_weight_piecewise_in_r_has_a_closed_form_in_every_calculus():
         assert report.verified, (calculus, report.checks, report.details)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="known limitation: at u = 0 the Gauss-Legendre quadrature of (F-22) for f = u**alpha (not analytic at 0) reaches"
-    " about 1e-9 relative, above KERNEL_TOLERANCE = 1e-10 since that was tightened (issue 32); verify refuses the law on"
-    " kernel_accuracy alone. Strict: it fails loudly once the quadrature is refined towards u = 0",
-)
 def test_a_symbolic_exponent_verifies_through_quadrature_in_ito():
     model = derive_noise(law(SYMBOLIC_EXPONENT), "ito")
     assert not model.closed_form and model.reason == "f = gamma_f*u**alpha is not a sum of polynomials in u times exp(c u)"

@@ -244,12 +244,13 @@ inline double next_cut(double u, double lo, double hi, double w, double r, const
 """
 
 _TAIL = """// (1/a) int_u^oo f(s) exp(-(s^2 - u^2)/(2a)) ds (F-22), with t = s - u: {order}-point Gauss-Legendre on the
-// panels [0, h], [h, 2h], [2h, 4h], ... with h = a / (u + sqrt(a)) / 256, until the Gaussian weight
-// exp(-(2ut + t^2)/(2a)) is below exp(-46){split} (fricgen.derive.backends.numba_kernels.kernel_code's _gaussian_tail, step for step).
+// panels [0, h], [h, 2h], [2h, 4h], ... with h = a / (u + sqrt(a)) / 256 (for u < h from [0, h/2^16]
+// up to h), until the Gaussian weight exp(-(2ut + t^2)/(2a)) is below exp(-46){split}
+// (fricgen.derive.backends.numba_kernels.kernel_code's _gaussian_tail, step for step).
 inline double gaussian_tail(double u, double a, double w, double r, const double *params)
 {{
   const double h = a / (u + std::sqrt(a)) / 256.0;
-  double lo = 0.0, hi = h, total = 0.0;
+  double lo = 0.0, hi = u >= h ? h : h / 65536.0, total = 0.0;
   while (true) {{
 {panels}
     if ((2.0 * u * hi + hi * hi) / (2.0 * a) > 46.0) return total / a;

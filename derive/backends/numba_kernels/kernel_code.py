@@ -73,11 +73,12 @@ def _gaussian_tail(u, a, w, r, params):
 
     {order}-point Gauss-Legendre on the panels [0, h], [h, 2h], [2h, 4h], ... with
     h = a / (u + sqrt(a)) / 256 (the weight decays on the scale a/(u + sqrt(a))), until the
-    Gaussian weight exp(-(2ut + t^2)/(2a)) is below exp(-46).
+    Gaussian weight exp(-(2ut + t^2)/(2a)) is below exp(-46). For u < h the first panel starts
+    as [0, h/2^16] and doubles up to h: f may not be analytic at s = 0 (u**alpha).
     """
     h = a / (u + math.sqrt(a)) / 256.0
     lo = 0.0
-    hi = h
+    hi = h if u >= h else h / 65536.0
     total = 0.0
     while True:
         mid = 0.5 * (lo + hi)
@@ -122,11 +123,12 @@ def _gaussian_tail(u, a, w, r, params):
     {order}-point Gauss-Legendre on the panels [0, h], [h, 2h], [2h, 4h], ... with
     h = a / (u + sqrt(a)) / 256 (the weight decays on the scale a/(u + sqrt(a))), until the
     Gaussian weight exp(-(2ut + t^2)/(2a)) is below exp(-46); each panel cut at the branch
-    points of f inside it (_next_cut; at most 64 pieces).
+    points of f inside it (_next_cut; at most 64 pieces). For u < h the first panel starts as
+    [0, h/2^16] and doubles up to h: f may not be analytic at s = 0 (u**alpha).
     """
     h = a / (u + math.sqrt(a)) / 256.0
     lo = 0.0
-    hi = h
+    hi = h if u >= h else h / 65536.0
     total = 0.0
     while True:
         start = lo

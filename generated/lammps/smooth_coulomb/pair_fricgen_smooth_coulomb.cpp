@@ -190,12 +190,13 @@ const double GL_NODES[10] = {-0.9739065285171717, -0.8650633666889845, -0.679409
 const double GL_WEIGHTS[10] = {0.06667134430868814, 0.1494513491505806, 0.21908636251598204, 0.26926671930999635, 0.29552422471475287, 0.29552422471475287, 0.26926671930999635, 0.21908636251598204, 0.1494513491505806, 0.06667134430868814};
 
 // (1/a) int_u^oo f(s) exp(-(s^2 - u^2)/(2a)) ds (F-22), with t = s - u: 10-point Gauss-Legendre on the
-// panels [0, h], [h, 2h], [2h, 4h], ... with h = a / (u + sqrt(a)) / 256, until the Gaussian weight
-// exp(-(2ut + t^2)/(2a)) is below exp(-46) (fricgen.derive.backends.numba_kernels.kernel_code's _gaussian_tail, step for step).
+// panels [0, h], [h, 2h], [2h, 4h], ... with h = a / (u + sqrt(a)) / 256 (for u < h from [0, h/2^16]
+// up to h), until the Gaussian weight exp(-(2ut + t^2)/(2a)) is below exp(-46)
+// (fricgen.derive.backends.numba_kernels.kernel_code's _gaussian_tail, step for step).
 inline double gaussian_tail(double u, double a, double w, double r, const double *params)
 {
   const double h = a / (u + std::sqrt(a)) / 256.0;
-  double lo = 0.0, hi = h, total = 0.0;
+  double lo = 0.0, hi = u >= h ? h : h / 65536.0, total = 0.0;
   while (true) {
     const double mid = 0.5 * (lo + hi);
     const double half = 0.5 * (hi - lo);
