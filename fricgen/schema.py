@@ -27,9 +27,10 @@ STEP_LIMIT = 2**62
 
 SCALES = (1e-6, 1e6)
 """The magnitudes a scale of a run may take (a radius, a mass, kT, a mobility), in fricgen's units
-(sigma = 1, kT = 1, m = 1, t0): the engines and the kernels are checked at scales of order one, and
-six decades either way keep every product and quotient the engines form (r^2 / dt, kT / mu, a force
-times a radius) far from overflow, underflow and subnormal numbers. A force may be 0 or up to
+(sigma = 1, kT = 1, m = 1, t0): verify checks the kernels at scales of order one, the built-in laws'
+noise kernels are checked at the four corners of kT and mu (tests/codegen/test_scales.py: within
+KERNEL_TOLERANCE), and six decades either way keep every product and quotient the engines form
+(r^2 / dt, kT / mu, a force times a radius) far from overflow, underflow and subnormal numbers. A force may be 0 or up to
 ``SCALES[1]`` in magnitude. Beyond this, results could not be stood behind: refused, one line."""
 
 

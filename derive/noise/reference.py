@@ -110,11 +110,11 @@ def _within(parameter, value: float) -> float:
     return value if value in parameter.range else parameter.default
 
 
-def reference_points(model: NoiseModel, a: sp.Expr) -> list[Point]:
-    """Reference values of D (:func:`reference_amplitude`, DIGITS digits) for every case of
-    KERNEL_CASES: at u = 0 where D or its limit is finite, then at :func:`_speeds`."""
+def reference_points(model: NoiseModel, a: sp.Expr, cases: tuple[tuple[float, ...], ...] = KERNEL_CASES) -> list[Point]:
+    """Reference values of D (:func:`reference_amplitude`, DIGITS digits) for every case (kT, mu, w, r,
+    factor on every parameter default): at u = 0 where D or its limit is finite, then at :func:`_speeds`."""
     found = []
-    for temperature, mobility, weight, distance, factor in KERNEL_CASES:
+    for temperature, mobility, weight, distance, factor in cases:
         scaled = {p.symbol: _within(p, factor * p.default) for p in model.law.parameters}
         values = {**scaled, kT: temperature, mu: mobility, w: weight, r: distance}
         arguments = (weight, distance, mobility, temperature, [float(values[p.symbol]) for p in model.law.parameters])
