@@ -1,15 +1,29 @@
 """The slit fit (F-43): the Stokes solution itself, recovery of a known eta and b with calibrated
 errors from synthetic noisy profiles, a wrong profile shape caught by chi^2, and the ``poiseuille``
-entry and ``profiles.png`` that ``fricgen run`` writes for a slit."""
+entry and ``profiles.png`` that ``fricgen run`` writes for a slit, and the count of contacts on the
+Coulomb branch in a hand-built configuration (directly and through a GSD file)."""
 
 import json
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
 from fricgen.app.cli import main
-from fricgen.app.studies.poiseuille import fit_slit_profile, frame_errors, inside, slit_geometry, stokes_profile
+from fricgen.app.studies.poiseuille import (
+    ContactBranches,
+    contact_branches,
+    fit_slit_profile,
+    frame_errors,
+    inside,
+    slit_geometry,
+    stokes_profile,
+    trajectory_branches,
+)
 from fricgen.errors import ConfigError
+from fricgen.kernels import load_law_kernels
+from fricgen.langevin.system import Particles, State
+from fricgen.langevin.trajectory import GSDWriter
 
 #: The paper's slit: 36 bins across L_y = 2 x 8.5847 + 1, y_B = 7.5847, phi = 0.15, with a body force.
 LY, BINS, Y_B, N_DENSITY, F = 18.1694, 36, 7.5847, 6 * 0.15 / np.pi, 0.02
@@ -120,3 +134,48 @@ def test_fricgen_run_fits_a_slit_and_draws_the_profiles(tmp_path, capsys):
     assert all(np.isfinite(fit[key]) for key in ("eta", "eta_err", "slip", "slip_err", "chi2"))
     assert "eta_err_frames" in fit and "slip_err_frames" in fit  # None here: some slabs of this tiny run are empty in some frames
     assert (out / "profiles.png").stat().st_size > 10_000
+
+
+def branch_configuration():
+    """Hand-built pairs in a periodic 10^3 box (R = 1/2, Coulomb–Newton gamma_f = 6, kappa_f = 5; at r = 1
+    w = 24, so the Coulomb branch starts at u = 20), returned as (particles, state):
+    A: r = 1, u = 25 -> Coulomb; B: u = 15 tangential plus 100 along r_hat -> viscous;
+    C: spins only, (R omega_i + R omega_k) x r_hat = 22 -> Coulomb; D: across the periodic x boundary,
+    r = 0.9 (w = 138.7, threshold u = 115.5), u = 50 -> viscous; E: two wall spheres -> left out;
+    F: wall and mobile sphere, u = 30 -> Coulomb; G: r = 1.2, beyond 2^(1/6) -> not in contact."""
+    position = np.array([[1, 1, 1], [2, 1, 1], [1, 5, 1], [2, 5, 1], [5, 5, 5], [6, 5, 5], [9.6, 8, 8], [0.5, 8, 8],
+                         [5, 1, 8], [6, 1, 8], [5, 8, 2], [5, 9, 2], [8, 3, 3], [9.2, 3, 3]], dtype=float)  # fmt: skip
+    velocity, omega = np.zeros_like(position), np.zeros_like(position)
+    velocity[1] = [0, 25, 0]
+    velocity[3] = [100, 15, 0]
+    omega[4] = omega[5] = [0, 0, 22]
+    velocity[7] = [0, 50, 0]
+    velocity[11] = [30, 0, 0]
+    velocity[13] = [0, 500, 0]
+    mobile = np.ones(14, bool)
+    mobile[[8, 9, 10]] = False
+    particles = Particles(np.full(14, 0.5), np.ones(14), np.full(14, 0.1), mobile)
+    return particles, State(position, velocity, omega, np.tile([1.0, 0, 0, 0], (14, 1)), np.full(3, 10.0), 3)
+
+
+def test_contact_branches_of_a_hand_built_configuration():
+    particles, state = branch_configuration()
+    kernels = load_law_kernels("coulomb_newton")
+    parameters = kernels.parameters(gamma_f=6.0, kappa_f=5.0)
+    args = (state.position, state.velocity, state.omega, particles.radius, particles.mobile, state.box)
+    branches = contact_branches(*args, kernels, parameters)
+    assert branches == ContactBranches(contacts=5, coulomb=3, wall_contacts=1, wall_coulomb=1)
+    assert branches.fraction == pytest.approx(0.6) and branches.wall_fraction == 1.0
+    # kappa_f = 7 moves the threshold at r = 1 to u = 28: A (25) and C (22) turn viscous, F (30) stays.
+    assert contact_branches(*args, kernels, kernels.parameters(gamma_f=6.0, kappa_f=7.0)).coulomb == 1
+
+
+def test_trajectory_branches_read_a_gsd_frame(tmp_path):
+    particles, state = branch_configuration()
+    path = tmp_path / "trajectory.gsd"
+    with GSDWriter(path, particles) as writer:
+        for step in (0, 10):
+            state.step = step
+            writer(SimpleNamespace(state=state))
+    steps, counts = trajectory_branches(path, "coulomb_newton", {"gamma_f": 6.0, "kappa_f": 5.0}, first_step=5)
+    assert steps == [10] and counts == [ContactBranches(contacts=5, coulomb=3, wall_contacts=1, wall_coulomb=1)]

@@ -15,7 +15,8 @@ model, if the bins fluctuate independently; :func:`frame_errors` gives the error
 (the slow flow modes move all bins together). Units: sigma = 1, kT = 1, m = 1, t0; eta in
 kT t0 / sigma^3, b in sigma. See docs/poiseuille.md. A ``fricgen run`` of the kind ``slit_flow``
 gets the fit as the ``poiseuille`` entry of its summary and its figure ``profiles.png``
-(:func:`summarize_run`).
+(:func:`summarize_run`). :func:`contact_branches` counts the contacts of a frame on the Coulomb branch
+of the Coulomb–Newton law (F-32), :func:`trajectory_branches` those of every frame of a run.
 """
 
 from __future__ import annotations
@@ -23,11 +24,15 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
+import gsd.hoomd
 import numpy as np
 from matplotlib.figure import Figure
 from scipy.optimize import curve_fit
+from scipy.spatial import cKDTree
 
 from ...errors import ConfigError
+from ...kernels import LawKernels, load_law_kernels
+from ...langevin.pairs import WCA_RANGE
 from ...langevin.simulation import Simulation
 from ..run.config import RunConfig
 from ..run.observables import read_table
@@ -141,6 +146,14 @@ def fit_slit_run(config: RunConfig, n: int, profile: dict, width: float) -> Slit
     return fit_slit_profile(profile["y"], v, v_err, width, n / volume, config.bulk.vector[0], boundary)
 
 
+def profile_frames(folder: Path, equilibrate: int, bins: int) -> np.ndarray:
+    """The v_x profiles (rows: frames after step ``equilibrate``, columns: the ``bins`` slabs; NaN where
+    empty) of a run folder's velocity_profile.csv."""
+    header, rows = read_table(Path(folder) / "velocity_profile.csv")
+    rows = rows[rows[:, 0] > equilibrate]
+    return rows[:, [header.index(f"vx_{j}") for j in range(bins)]]
+
+
 def summarize_run(config: RunConfig, simulation: Simulation, folder: Path, summary: dict) -> dict | None:
     """The ``poiseuille`` entry of a slit run's summary: the fit of its velocity profile (``{"error":
     why}`` when it cannot be fitted) with the errors of the per-frame fits (the velocity_profile table's
@@ -148,11 +161,9 @@ def summarize_run(config: RunConfig, simulation: Simulation, folder: Path, summa
     profile = summary.get("velocity_profile")
     if profile is None:
         return None
-    header, rows = read_table(folder / "velocity_profile.csv")
-    rows = rows[rows[:, 0] > config.run.equilibrate]
     bins = config.output.profile_bins
     width = simulation.state.box[1] / bins
-    frames = rows[:, [header.index(f"vx_{j}") for j in range(bins)]]
+    frames = profile_frames(folder, config.run.equilibrate, bins)
     try:
         fit = fit_slit_run(config, summary["n"], profile, width)
     except ConfigError as error:
@@ -200,3 +211,87 @@ def profiles_figure(profile: dict, fit: SlitFit | None, path: Path) -> Path:
     figure.suptitle("Poiseuille flow in the slit: velocity and spin profiles (block errors)")
     figure.savefig(path, dpi=120)
     return path
+
+
+@dataclass(frozen=True)
+class ContactBranches:
+    """Pairs in contact (centre distance r < 2^(1/6) sigma_ik, at least one partner mobile) and how many
+    of them are on the Coulomb branch of f = min(gamma_f u, w kappa_f) (F-32), i.e. gamma_f u > w kappa_f;
+    ``wall``: the same counts for the pairs of a mobile and an immobile (wall) sphere."""
+
+    contacts: int
+    coulomb: int
+    wall_contacts: int
+    wall_coulomb: int
+
+    @property
+    def fraction(self) -> float:
+        return self.coulomb / self.contacts if self.contacts else float("nan")
+
+    @property
+    def wall_fraction(self) -> float:
+        return self.wall_coulomb / self.wall_contacts if self.wall_contacts else float("nan")
+
+
+def contact_branches(position, velocity, omega, radius, mobile, box, kernels: LawKernels, parameters: np.ndarray) -> ContactBranches:
+    """The contacts of one configuration and their branch of the Coulomb–Newton law (F-32).
+
+    For each pair i < k within the WCA range (periodic in every direction with a positive box length),
+    as the engine evaluates it: u = |P (v_k - v_i) - (R_i omega_i + R_k omega_k) x r_hat| (F-4) and
+    w = weight(r / sigma_ik) / sigma_ik (= -dU_WCA/dr); the pair is on the Coulomb branch when
+    gamma_f u > w kappa_f. Pairs of two immobile spheres are left out (the engine skips them).
+
+    Args:
+        position, velocity, omega: (N, 3) arrays (sigma, sigma/t0, 1/t0); positions anywhere (wrapped here).
+        radius: (N,) radii (sigma); mobile: (N,) bool.
+        box: the box lengths (sigma); a length 0 is a non-periodic axis (2-D: L_z = 0).
+        kernels, parameters: the law's kernels and parameter array; the law must have a weight and the
+            parameters gamma_f and kappa_f.
+    """
+    names = kernels.parameter_names
+    if not kernels.has_weight or "gamma_f" not in names or "kappa_f" not in names:
+        raise ConfigError("law", f"law {kernels.name} is not a Coulomb–Newton law with a weight", "use coulomb_newton")
+    gamma_f, kappa_f = parameters[names.index("gamma_f")], parameters[names.index("kappa_f")]
+    position, velocity, omega = (np.asarray(a, dtype=float) for a in (position, velocity, omega))
+    radius, mobile = np.asarray(radius, dtype=float), np.asarray(mobile, dtype=bool)
+    box = np.asarray(box, dtype=float)[:3]
+    periodic = box > 0
+    reach = WCA_RANGE * 2 * radius.max()
+    data = np.where(periodic, np.mod(position, np.where(periodic, box, 1.0)), position - position.min(axis=0))
+    size = np.where(periodic, box, data.max(axis=0) + 2 * reach)  # a non-periodic axis: no image within reach
+    data = np.minimum(data, np.nextafter(size, 0))  # float rounding can give exactly L
+    pairs = cKDTree(data, boxsize=size).query_pairs(reach, output_type="ndarray")
+    i, k = pairs[:, 0], pairs[:, 1]
+    d = position[k] - position[i]
+    d -= np.where(periodic, box * np.round(d / np.where(periodic, box, 1.0)), 0.0)
+    r = np.linalg.norm(d, axis=1)
+    sigma = radius[i] + radius[k]
+    keep = (r < WCA_RANGE * sigma) & (mobile[i] | mobile[k])
+    i, k, d, r, sigma = i[keep], k[keep], d[keep], r[keep], sigma[keep]
+    n = d / r[:, None]
+    relative = velocity[k] - velocity[i]
+    spin = radius[i, None] * omega[i] + radius[k, None] * omega[k]
+    tangential = relative - np.sum(relative * n, axis=1)[:, None] * n - np.cross(spin, n)
+    u = np.linalg.norm(tangential, axis=1)
+    w = np.array([kernels.weight(x, parameters) for x in r / sigma]) / sigma
+    coulomb = gamma_f * u > w * kappa_f
+    wall = ~(mobile[i] & mobile[k])
+    return ContactBranches(int(r.size), int(coulomb.sum()), int(wall.sum()), int((coulomb & wall).sum()))
+
+
+def trajectory_branches(path: str | Path, law: str, parameters: dict, first_step: int = 0) -> tuple[list[int], list[ContactBranches]]:
+    """The steps and :func:`contact_branches` of the frames at steps >= ``first_step`` of a fricgen GSD
+    trajectory (positions, velocities, ``log/particles/angular_velocity``; type 0 mobile), for the law
+    ``law`` with ``parameters`` (a run's config.json ``law.name`` and ``law.parameters``)."""
+    kernels = load_law_kernels(law)
+    values = kernels.parameters(**parameters)
+    steps, counts = [], []
+    with gsd.hoomd.open(str(path), "r") as trajectory:
+        for frame in trajectory:
+            if int(frame.configuration.step) < first_step:
+                continue
+            p = frame.particles
+            counts.append(contact_branches(p.position, p.velocity, frame.log["particles/angular_velocity"], p.diameter / 2,
+                                           p.typeid == 0, frame.configuration.box[:3], kernels, values))  # fmt: skip
+            steps.append(int(frame.configuration.step))
+    return steps, counts
