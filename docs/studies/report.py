@@ -188,19 +188,32 @@ def table_row(run: dict) -> str:
     return "| " + " | ".join(str(cell) for cell in cells) + " |"
 
 
-def main(argv: list[str] | None = None) -> None:
-    """Analyse the folders given (default: out/fig7/*/), write fig7.json and fig7_dip_vs_time.png."""
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("folders", nargs="*", help="run folders (default: out/fig7/*/)")
+def arguments(argv: list[str] | None, description: str, default: tuple[str, ...]) -> argparse.Namespace:
+    """The command line of a report script: ``folders`` (the glob patterns ``default`` when none are
+    given) and ``--results`` (default: results/ beside this file)."""
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("folders", nargs="*", help=f"run folders (default: {' '.join(default)})")
     parser.add_argument("--results", type=Path, default=Path(__file__).parent / "results")
     args = parser.parse_args(argv)
-    folders = [Path(f) for f in args.folders] or sorted(p for pattern in DEFAULT for p in Path().glob(pattern))
+    args.folders = [Path(f) for f in args.folders] or sorted(p for pattern in default for p in Path().glob(pattern))
+    return args
+
+
+def finished_runs(folders: list[Path], analyse) -> tuple[list[dict], list[str]]:
+    """``analyse(folder)`` of the folders with a summary.json, and the names of those without (still running)."""
     runs, pending = [], []
     for folder in folders:
         if (folder / "summary.json").exists():
             runs.append(analyse(folder))
         else:
             pending.append(folder.name)
+    return runs, pending
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Analyse the folders given (default: out/fig7/*/), write fig7.json and fig7_dip_vs_time.png."""
+    args = arguments(argv, __doc__.splitlines()[0], DEFAULT)
+    runs, pending = finished_runs(args.folders, analyse)
     args.results.mkdir(parents=True, exist_ok=True)
     record = {"criterion_paper": "exactly two local maxima of the smoothed pooled histogram", "criterion_strict": mips.CRITERION}
     record.update(kernel=mips.KERNEL, spacing=mips.SPACING, bin=mips.BIN, smoothing=mips.SMOOTHING, runs=runs, not_finished=pending)
