@@ -15,7 +15,8 @@ gamma_f (kappa_f = 5, delta_w = 0) and kappa_f (gamma_f = 6, delta_w = 0); again
 (gamma_f = 6, kappa_f = 5) the differences of neighbouring points in units of their combined error.
 Points with two seeds give the seed differences in units of the combined frame errors, and the chi^2
 of one eta over all gamma_f = 6 runs tests the frame errors across runs. Each run is also refitted
-without the slabs within MARGIN = 1 sigma of the walls (:func:`inner_fit`; y_B, n, F unchanged).
+without the slabs within MARGIN = 1 sigma of the walls, and its frame errors are recomputed with 40,
+10 and 5 blocks instead of 20 (:func:`refit`; y_B, n, F unchanged).
 
 Written: ``fig6.json`` and ``fig6.png`` (b, eta and the Coulomb-branch fraction against gamma_f,
 kappa_f and delta_w). Usage (from the folder that holds the sweep's output)::
@@ -42,6 +43,8 @@ from fricgen.app.studies.poiseuille import fit_slit_profile, frame_errors, profi
 DEFAULT = ("out/fig6/*/",)
 #: The inner fit leaves out the slabs within MARGIN sigma of the boundaries y_B (the layered fluid at the walls).
 MARGIN = 1.0
+#: The block counts of the frame errors compared (the runs' own: 20 blocks).
+BLOCKS = (40, 10, 5)
 #: The series of the figure and the trends: the parameter varied, and the others held fixed.
 SERIES = {
     "gamma_f": {"kappa_f": 5.0, "roughness": 0.0},
@@ -57,9 +60,11 @@ def mean_error(values: list[float]) -> dict:
     return {"mean": float(values.mean()), "error": float(values.std(ddof=1) / np.sqrt(values.size)), "samples": int(values.size)}
 
 
-def inner_fit(folder: Path, config: dict, summary: dict, margin: float = MARGIN) -> dict:
-    """eta and b (with frame errors) and chi^2/dof of (F-43) fitted to the slabs inside |y| <= y_B - margin
-    only (y_B, n and F unchanged): the shape of the profile near the walls left out."""
+def refit(folder: Path, config: dict, summary: dict, margin: float = 0.0, blocks: int = 20) -> dict:
+    """eta and b with their frame errors over ``blocks`` blocks, and chi^2/dof, of (F-43) fitted to the
+    slabs inside |y| <= y_B - margin only (y_B, n and F unchanged). margin = 0, blocks = 20 is the
+    run's own fit; margin > 0 leaves out the shape of the profile near the walls, and fewer, longer
+    blocks test whether the blocks outlast the slow flow modes."""
     fit, profile = summary["poiseuille"], summary["velocity_profile"]
     bins = config["output"]["profile_bins"]
     y = np.array(profile["y"])
@@ -67,8 +72,8 @@ def inner_fit(folder: Path, config: dict, summary: dict, margin: float = MARGIN)
     width = summary["box"][1] / bins
     v = np.where(np.abs(y) + width / 2 <= fit["boundary"] - margin + 1e-9, v, np.nan)
     inner = fit_slit_profile(y, v, error, width, fit["density"], fit["force"], fit["boundary"])
-    eta_err, slip_err = frame_errors(inner, y, error, profile_frames(folder, config["run"]["equilibrate"], bins))
-    return {"margin": margin, "eta": inner.eta, "eta_err": eta_err, "slip": inner.slip, "slip_err": slip_err,
+    eta_err, slip_err = frame_errors(inner, y, error, profile_frames(folder, config["run"]["equilibrate"], bins), blocks)
+    return {"margin": margin, "blocks": blocks, "eta": inner.eta, "eta_err": eta_err, "slip": inner.slip, "slip_err": slip_err,
             "reduced_chi2": inner.reduced_chi2, "dof": inner.dof}  # fmt: skip
 
 
@@ -99,7 +104,8 @@ def analyse(folder: Path) -> dict:
         "slip_err_bins": fit["slip_err"],
         "reduced_chi2": fit["reduced_chi2"],
         "dof": fit["dof"],
-        "inner": inner_fit(folder, config, summary),
+        "inner": refit(folder, config, summary, MARGIN),
+        "blocks": {str(b): refit(folder, config, summary, blocks=b) for b in BLOCKS},
         "T_trans": summary["T_trans"],
         "T_rot": summary["T_rot"],
         "seconds": round(summary["seconds"], 1),
@@ -184,10 +190,11 @@ def seed_pairs(runs: list[dict]) -> list[dict]:
     return rows
 
 
-def scatter(runs: list[dict], inner: bool = False) -> dict:
+def scatter(runs: list[dict], which: str | None = None) -> dict:
     """chi^2 of one constant eta over the gamma_f = 6 runs (kappa_f, delta_w and seeds varied; the paper's
-    eta depends on none of them), with the frame errors: a test of those errors and of the fit."""
-    chosen = [r["inner"] if inner else r for r in runs if r["gamma_f"] == 6.0]
+    eta depends on none of them), with the frame errors: a test of those errors and of the fit.
+    ``which``: None for the runs' own fit, "inner" or a block count of ``blocks`` for a refit."""
+    chosen = [r if which is None else r["inner"] if which == "inner" else r["blocks"][which] for r in runs if r["gamma_f"] == 6.0]
     y, e = np.array([r["eta"] for r in chosen]), np.array([r["eta_err"] for r in chosen])
     mean = np.sum(y / e**2) / np.sum(e**-2)
     chi2 = float(np.sum(((y - mean) / e) ** 2))
@@ -199,7 +206,7 @@ def scatter(runs: list[dict], inner: bool = False) -> dict:
 def figure(runs: list[dict], path: Path) -> Path:
     """b (top), eta (middle) and the Coulomb-branch fraction (bottom) against gamma_f, kappa_f and
     delta_w (columns); filled circles seed 1, open squares seed 2 (shifted a little to the right);
-    grey: the fit without the slabs within MARGIN of the walls (:func:`inner_fit`)."""
+    grey: the fit without the slabs within MARGIN of the walls (:func:`refit`)."""
     figure = Figure(figsize=(11, 8.5), layout="constrained")
     axes = figure.subplots(3, 3, sharex="col")
     rows = (("slip", r"slip length $b$ ($\sigma$)"), ("eta", r"$\eta$ ($k_BT t_0/\sigma^3$)"), ("coulomb_fraction", "Coulomb branch"))
@@ -280,7 +287,8 @@ def main(argv: list[str] | None = None) -> None:
     points = series(runs, "roughness")
     trends["roughness"] = {"points": points, "eta": steps(points, "roughness", "eta"), "slip": steps(points, "roughness", "slip")}
     args.results.mkdir(parents=True, exist_ok=True)
-    spread = {"all slabs": scatter(runs), "inner slabs": scatter(runs, inner=True)}
+    spread = {"all slabs": scatter(runs), "inner slabs": scatter(runs, "inner")}
+    spread |= {f"{b} blocks": scatter(runs, str(b)) for b in BLOCKS}
     record = {"runs": runs, "trends": trends, "seeds": seed_pairs(runs), "eta_scatter": spread, "not_finished": pending}
     (args.results / "fig6.json").write_text(json.dumps(record, indent=1) + "\n")
     figure(runs, args.results / "fig6.png")
