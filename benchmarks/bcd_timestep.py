@@ -61,13 +61,17 @@ def measure(case: str, dt: float, layer: str, duration: float) -> dict:
 
 
 def order(points: list[tuple[float, float, float]]) -> str:
-    """The slope of log |bias| against log dt over the points (dt, bias, error) with |bias| > 3 errors."""
-    resolved = [(dt, abs(bias)) for dt, bias, error in points if bias is not None and abs(bias) > 3 * error]
+    """The slope q of log |bias| against log dt over the points (dt, bias, error) with |bias| > 3 errors, weighted
+    by the errors of log |bias| (error / |bias|), with its error from them (for two points: exact through both)."""
+    resolved = [(dt, abs(bias), error / abs(bias)) for dt, bias, error in points if bias is not None and abs(bias) > 3 * error]
     if len(resolved) < 2:
         return f"not fitted ({len(resolved)} step(s) with a resolved bias)"
-    x, y = np.log([dt for dt, _ in resolved]), np.log([b for _, b in resolved])
-    slope = np.polyfit(x, y, 1)[0]
-    return f"q = {slope:.2f} over dt = {min(dt for dt, _ in resolved):g} .. {max(dt for dt, _ in resolved):g} ({len(resolved)} steps)"
+    x, y, s = (np.log([p[0] for p in resolved]), np.log([p[1] for p in resolved]), np.array([p[2] for p in resolved]))
+    design = np.stack([x, np.ones_like(x)], axis=1) / s[:, None]
+    covariance = np.linalg.inv(design.T @ design)
+    slope = (covariance @ design.T @ (y / s))[0]
+    span = f"dt = {min(p[0] for p in resolved):g} .. {max(p[0] for p in resolved):g} ({len(resolved)} steps)"
+    return f"q = {slope:.2f} ± {math.sqrt(covariance[0, 0]):.2f} over {span}"
 
 
 def main() -> None:
