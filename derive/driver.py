@@ -54,10 +54,12 @@ from .noise.verification import Report, prove
 #: Wall-time limit (seconds) of the derivation and verification of one law in one calculus: SymPy's
 #: cost grows steeply with f (a polynomial of degree 30 takes minutes), and no size limit bounds it.
 DERIVATION_TIME_LIMIT = 600.0
-#: The contact modes whose kernels the backends emit and the engines apply. Laws on the other modes
-#: (docs/physics-modes.md) are derived and proven by :func:`verify` and :func:`verify_contact`; their
-#: kernels would need the mode's mobility and map in the engines, which apply every law as sliding.
-EMITTED_MODES = ("sliding",)
+#: The contact modes whose Numba kernels are emitted: every mode (docs/physics-modes.md). The kernels
+#: are the same functions of (u, w, r, mu, kT) in each; a law module of another mode than sliding
+#: states it (MODE), and the Langevin engine applies it with that mode's map C_m and mobility mu_m.
+EMITTED_MODES = ("sliding", "rolling", "spinning")
+#: The modes the LAMMPS plugin applies (its pair style has the sliding contact only).
+PLUGIN_MODES = ("sliding",)
 
 
 class GenerationError(DeriveError, RuntimeError):
@@ -137,12 +139,26 @@ def write_if_changed(path: Path, text: str) -> Written:
     return Written(path, "written", manifests.sha256(text.encode()))
 
 
-def verified_models(law: FrictionLaw, seconds: float | None = DERIVATION_TIME_LIMIT) -> tuple[dict[str, NoiseModel], list[Report]]:
+def stating_mode(text: str, mode: str) -> str:
+    """A law module's text with ``MODE = '<mode>'`` after its HAS_WEIGHT line, for a law on another mode than
+    sliding: the engines read it (fricgen.kernels.LawKernels.mode) and apply the law with the mode's map
+    and mobility. A sliding law's module is left byte for byte as it was (no MODE: sliding)."""
+    if mode == "sliding":
+        return text
+    line = next(x for x in text.splitlines(keepends=True) if x.startswith("HAS_WEIGHT = "))
+    note = f"MODE = {mode!r}  # the contact mode: u is the speed |v_m| of the {mode} velocity (docs/physics-modes.md)\n"
+    return text.replace(line, line + note, 1)
+
+
+def verified_models(
+    law: FrictionLaw, seconds: float | None = DERIVATION_TIME_LIMIT, emitted: tuple[str, ...] = EMITTED_MODES, backend: str = "Numba"
+) -> tuple[dict[str, NoiseModel], list[Report]]:
     """Derive and verify the law for each of its calculi, each within ``seconds`` (None: no limit);
-    raise GenerationError on any failure."""
-    if law.mode not in EMITTED_MODES:
+    raise GenerationError on any failure, or for a law on a mode that the ``backend`` does not
+    apply (not in ``emitted``)."""
+    if law.mode not in emitted:
         raise GenerationError(
-            f"law {law.name}: mode {law.mode!r}: no kernels are emitted for it yet (the engines apply every law as sliding);"
+            f"law {law.name}: mode {law.mode!r}: the {backend} backend emits no kernels for it (it applies {list(emitted)});"
             f" `fricgen verify {law.name}` proves it"
         )
     models, reports = {}, []
@@ -194,7 +210,7 @@ def generate(names: list[str] | None = None, catalogue: Path = CATALOGUE, output
         models, law_reports = verified_models(law)
         reports += law_reports
         source = f"derive/law/catalogue/{name}.toml" if built_in else f"{catalogue.resolve().name}/{name}.toml"
-        texts[name] = law_module(law, models, law.source_hash, source, generate_command(name, catalogue))
+        texts[name] = stating_mode(law_module(law, models, law.source_hash, source, generate_command(name, catalogue)), law.mode)
     record = not (output.resolve() == GENERATED.resolve())  # the package's own kernels are trusted as installed code
     if record:
         manifests.store()  # a cache folder to record the files in, or nothing is written
@@ -241,7 +257,9 @@ def _emit_potentials(output: Path) -> list[Written]:
 __all__ = [
     "CONTACT_SIGNATURE",
     "DECORATOR",
+    "EMITTED_MODES",
     "GENERATED",
+    "PLUGIN_MODES",
     "SIGNATURES",
     "GenerationError",
     "Written",
@@ -251,5 +269,6 @@ __all__ = [
     "verify_contact",
     "law_module",
     "potential_module",
+    "stating_mode",
     "write_if_changed",
 ]

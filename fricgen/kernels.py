@@ -112,6 +112,12 @@ class LawKernels:
         return self.module.HAS_WEIGHT
 
     @property
+    def mode(self) -> str:
+        """The contact mode the law acts on: ``MODE`` of the module, sliding where it has none (every
+        sliding law's module; docs/physics-modes.md)."""
+        return getattr(self.module, "MODE", "sliding")
+
+    @property
     def ranges(self) -> dict[str, Interval]:
         """The admissible values of each parameter (from the law file; the positive reals by default)."""
         ranges = getattr(self.module, "RANGES", None) or [()] * len(self.parameter_names)  # () : Interval() = POSITIVE

@@ -65,11 +65,21 @@ def test_spinning_does_not_exist_in_2d():
         modes.mode_map("spinning", 2)
 
 
-def test_generate_refuses_modes_the_engines_do_not_apply_yet(tmp_path):
+def test_a_rolling_laws_module_states_its_mode_and_the_lammps_plugin_refuses_it(tmp_path):
+    """The Numba kernels of a rolling law carry MODE = 'rolling' (a sliding law's module has no MODE and is
+    unchanged); the LAMMPS plugin, whose pair style has the sliding contact only, refuses the law."""
     path = tmp_path / "rolling_linear.toml"
     path.write_text(ROLLING)
-    with pytest.raises(driver.GenerationError, match="mode 'rolling': no kernels are emitted"):
-        driver.verified_models(load_law(path))
+    law = dataclasses.replace(load_law(path), calculi=("ito",))
+    with pytest.raises(
+        driver.GenerationError, match=r"mode 'rolling': the LAMMPS plugin backend emits no kernels for it \(it applies \['sliding'\]\)"
+    ):
+        driver.verified_models(law, emitted=driver.PLUGIN_MODES, backend="LAMMPS plugin")
+    models, _ = driver.verified_models(law)
+    text = driver.stating_mode(driver.law_module(law, models, law.source_hash, "rolling_linear.toml"), law.mode)
+    assert text.count("\nMODE = 'rolling'  # the contact mode") == 1 and text.index("\nHAS_WEIGHT") < text.index("\nMODE")
+    plain = driver.law_module(law, models, law.source_hash, "rolling_linear.toml")
+    assert driver.stating_mode(plain, "sliding") == plain and "\nMODE" not in plain
 
 
 # --- the maps C_m and the mobilities mu_m ---------------------------------------------------------

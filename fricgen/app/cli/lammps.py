@@ -128,14 +128,14 @@ def plugin_texts(name: str, calculus: str = "ito") -> dict[str, str]:
     """Derive and verify ``name`` in ``calculus`` and print its plugin's files (LammpsCalculusError,
     a DeriveError, for a calculus the pair style cannot integrate)."""
     from fricgen.derive.backends.lammps_plugin.module import check_calculus, plugin_files
-    from fricgen.derive.driver import verified_models
+    from fricgen.derive.driver import PLUGIN_MODES, verified_models
     from fricgen.derive.law.catalogues import find_law, is_built_in
     from fricgen.derive.law.laws import load_law
 
     path = find_law(name)
     law = load_law(path)
     check_calculus(law, calculus)
-    models, _ = verified_models(dataclasses.replace(law, calculi=(calculus,)))
+    models, _ = verified_models(dataclasses.replace(law, calculi=(calculus,)), emitted=PLUGIN_MODES, backend="LAMMPS plugin")
     source = f"derive/law/catalogue/{name}.toml" if is_built_in(path.parent) else f"{path.parent.name}/{name}.toml"
     return plugin_files(law, models[calculus], law.source_hash, source)
 
