@@ -65,7 +65,7 @@ def proposals(xs, dyn, params, law, key, pairs, geometry):
     out = np.empty_like(xs)
     for p in numba.prange(xs.size):
         w, r, mu = geometry[p, 4], geometry[p, 3], geometry[p, 5]
-        out[p] = _propose(xs[p], w, r, mu, dyn, params, law, key, pairs[p, 0], pairs[p, 1])[0]
+        out[p] = _propose(xs[p], w, r, mu, dyn, params, law, key, pairs[p, 0], pairs[p, 1], dyn.dims - 1)[0]
     return out
 
 

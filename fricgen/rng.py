@@ -25,7 +25,7 @@ _TWO_53 = 1.0 / 9007199254740992.0
 
 #: The one registry of streams: independent noise sources keyed on the same (seed, step, i, k).
 #: Every engine takes its stream ids from here. Ids are distinct within an engine (the Langevin
-#: engine's 1-4, the rods' 4-5 never meet in one run); their values are fixed, since a seed must
+#: engine's 1-4, 6, 7, the rods' 4-5 never meet in one run); their values are fixed, since a seed must
 #: keep reproducing earlier runs bit for bit.
 SOLVENT = 1  # Langevin: Ornstein–Uhlenbeck solvent kicks, per particle
 CONTACT = 2  # Langevin: frictional contact noise, per pair
@@ -33,6 +33,8 @@ INITIAL = 3  # initial velocities, spins and orientations; rods: shifts of the e
 WALL_ROUGHNESS = 4  # Langevin: Gaussian heights of rough slab walls
 BCD = 4  # rods: Brownian trial forces, per replica and rod
 MONTE_CARLO = 5  # rods: Metropolis proposals and acceptances of the equilibrium start
+ROLLING = 6  # Langevin: rolling-friction noise, per pair (docs/physics-modes.md)
+SPINNING = 7  # Langevin: spinning-friction noise, per pair
 
 
 @numba.njit(inline="always", cache=True)

@@ -31,7 +31,13 @@ class Law(Section):
     "pairwise" (Metropolis-adjusted pair by pair: Maxwell–Boltzmann exact at any dt) or "explicit"
     (the first-order kick, where a wrong D shows in the temperatures; docs/physics.md#the-pairwise-contact-step).
     ``contact_noise = false`` drops the frictional noise (the inconsistent model), ``friction = false``
-    the contact entirely."""
+    the contact entirely.
+
+    Contact modes (docs/physics-modes.md): the law ``name`` acts on the mode its law file names (sliding by
+    default); ``rolling`` and ``spinning`` name laws for those modes (their files must say so), with
+    ``rolling_parameters`` and ``spinning_parameters`` overriding their defaults. One law per mode, all
+    in ``calculus``; spinning exists in 3-D only. The laws' modes are checked where the kernels are
+    loaded (fricgen.langevin.simulation.mode_laws)."""
 
     SECTION = "law"
     name: str = "coulomb_newton"
@@ -42,6 +48,10 @@ class Law(Section):
     scheme: str | None = None
     force_scheme: bool = False
     contact_scheme: str = "pairwise"
+    rolling: str | None = None
+    rolling_parameters: dict[str, float] = field(default_factory=dict)
+    spinning: str | None = None
+    spinning_parameters: dict[str, float] = field(default_factory=dict)
 
     def __post_init__(self):
         self.require(
@@ -61,9 +71,17 @@ class Law(Section):
             "this pairing is not a consistent thermostat",
             "set force_scheme = true only for a negative control",
         )
-        for name in self.parameters:
-            owner = OWNED_PARAMETERS.get(name)
-            self.require(owner is None, f"parameters.{name}", f"is set by {owner}", "remove it here")
+        for table in ("parameters", "rolling_parameters", "spinning_parameters"):
+            for name in getattr(self, table):
+                owner = OWNED_PARAMETERS.get(name)
+                self.require(owner is None, f"{table}.{name}", f"is set by {owner}", "remove it here")
+        for mode in ("rolling", "spinning"):
+            self.require(
+                getattr(self, mode) is not None or not getattr(self, f"{mode}_parameters"),
+                f"{mode}_parameters",
+                f"sets parameters of no law: law.{mode} names none",
+                f'name the {mode} law (law.{mode} = "...") or remove them',
+            )
 
     @property
     def integrator(self) -> Calculus:

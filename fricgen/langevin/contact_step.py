@@ -27,6 +27,12 @@ Pairs of one colour (greedy edge colouring of the pairs in contact, taken in (i,
 particle and run in parallel; the colours run one after another. The noise of a pair is keyed on
 (seed, step, CONTACT, i, k) (rng.pair_key; ziggurat normals): results are bit-identical for any thread count, neighbour-list skin or
 chunking.
+
+The rolling and spinning modes (docs/physics-modes.md) take the same step (contact_step_modes): x is
+v_roll . (e1 + i e2) (3-D), R_eff (w_iz - w_kz) (2-D) or v_spin (one component), mu the mode's mobility
+R_eff^2 (1/I_i + 1/I_k), the impulse acts along C_m^T on the spins only, and the noise comes from the
+ROLLING and SPINNING streams. A pair's modes are updated one after the other, each from the velocities
+the previous one left.
 """
 
 from __future__ import annotations
@@ -109,18 +115,18 @@ def colour_classes(pairs, size):
 
 
 @numba.njit(inline="always", cache=True)
-def _expm1(z, dims):
-    """e^z - 1 of a complex z without cancellation (z real in 2-D)."""
-    if dims == 2:
+def _expm1(z, comps):
+    """e^z - 1 of a complex z without cancellation (z real for a one-component mode)."""
+    if comps == 1:
         return complex(math.expm1(z.real), 0.0)
     grow, half = math.expm1(z.real), math.sin(0.5 * z.imag)
     return complex(grow * math.cos(z.imag) - 2.0 * half * half, (grow + 1.0) * math.sin(z.imag))
 
 
 @numba.njit(inline="always", cache=True)
-def _log1p(z, dims):
-    """The principal log(1 + z) of a complex z without cancellation (z real and > -1 in 2-D)."""
-    if dims == 2:
+def _log1p(z, comps):
+    """The principal log(1 + z) of a complex z without cancellation (z real and > -1 for a one-component mode)."""
+    if comps == 1:
         return complex(math.log1p(z.real), 0.0)
     return complex(0.5 * math.log1p(z.real * (2.0 + z.real) + z.imag * z.imag), math.atan2(z.imag, 1.0 + z.real))
 
@@ -133,11 +139,12 @@ def _inverse(z):
 
 
 @numba.njit(inline="always", cache=True)
-def mode_step(x, w, r, mu, dyn, params, law):
-    """The proposal from the mode x = u_perp . (e1 + i e2) (module docstring): returns (f/u, m, s2, g)
-    with y = x + (e^(g W) - 1) / g, W = m + sqrt(s2) (xi1 + i xi2), g the conjugate of grad ln sqrt(D)."""
+def mode_step(x, w, r, mu, dyn, params, law, comps):
+    """The proposal from the mode x = v_m . (e1 + i e2) (module docstring; ``comps`` = 1 or 2 components,
+    x real for one): returns (f/u, m, s2, g) with y = x + (e^(g W) - 1) / g, W = m + sqrt(s2) (xi1 + i xi2),
+    g the conjugate of grad ln sqrt(D)."""
     contact, slope, theta, kT, dt = law[0], law[1], THETA[dyn.scheme], dyn.kT, dyn.dt
-    u = abs(x.real) if dyn.dims == 2 else math.sqrt(x.real * x.real + x.imag * x.imag)
+    u = abs(x.real) if comps == 1 else math.sqrt(x.real * x.real + x.imag * x.imag)
     ratio, amplitude = contact(u, w, r, mu, kT, params)
     if theta == 1.0:  # D'/u with D = f/u
         slope_over_u = (slope(u, w, r, params) - ratio) / (u * u) if u > 0.0 else 0.0
@@ -149,15 +156,15 @@ def mode_step(x, w, r, mu, dyn, params, law):
     s2 = -mu * kT * decay * (2.0 + decay)  # mu kT (1 - e^(-2 lambda dt))
     g = (0.5 * slope_over_u / amplitude if amplitude > 0.0 else 0.0) * x.conjugate()
     m = (-mu * ratio + theta * mu * mu * kT * slope_over_u) * x * span
-    if dyn.dims == 2:  # one component: the map's mean shift g s2 / 2
+    if comps == 1:  # one component: the map's mean shift g s2 / 2
         m -= 0.5 * g * s2
     return ratio, m, s2, g
 
 
 @numba.njit(inline="always", cache=True)
-def _log_proposal(xi2, g_w, dims):
-    """log q(y|x) + (dims - 1) log(sqrt(s2)) + const for |xi|^2 of the standard normal xi and g W of the move."""
-    return -0.5 * xi2 - (dims - 1) * g_w.real
+def _log_proposal(xi2, g_w, comps):
+    """log q(y|x) + comps log(sqrt(s2)) + const for |xi|^2 of the standard normal xi and g W of the move."""
+    return -0.5 * xi2 - comps * g_w.real
 
 
 @numba.njit(inline="always", cache=True)
@@ -174,30 +181,30 @@ def _tangents(nx, ny, nz, dims):
 
 
 @numba.njit(inline="always", cache=True)
-def _propose(x, w, r, mu, dyn, params, law, key, i, k):
-    """(y, 1 - min(1, alpha)) of the Metropolis–Hastings move of the mode from x; y = x if the move
-    leaves the map's principal strip (a proposal to stay) or D = 0."""
-    dims, kT = dyn.dims, dyn.kT
-    _, m, s2, g = mode_step(x, w, r, mu, dyn, params, law)
+def _propose(x, w, r, mu, dyn, params, law, key, i, k, comps):
+    """(y, 1 - min(1, alpha)) of the Metropolis–Hastings move of a mode of ``comps`` components from x;
+    y = x if the move leaves the map's principal strip (a proposal to stay) or D = 0."""
+    kT = dyn.kT
+    _, m, s2, g = mode_step(x, w, r, mu, dyn, params, law, comps)
     if not s2 > 0.0:
         return x, 0.0
     key = pair_key(key, i, k)  # draws 0 and 1: the normals, 2: the uniform
-    xi = complex(ziggurat_normal(key, 0), ziggurat_normal(key, 1) if dims == 3 else 0.0)
+    xi = complex(ziggurat_normal(key, 0), ziggurat_normal(key, 1) if comps == 2 else 0.0)
     move = m + math.sqrt(s2) * xi
     g_w = g * move
     if abs(g_w.imag) >= math.pi:
         return x, 1.0
-    y = x + (_expm1(g_w, dims) * _inverse(g) if g != 0.0 else move)
-    _, m_back, s2_back, g_back = mode_step(y, w, r, mu, dyn, params, law)
+    y = x + (_expm1(g_w, comps) * _inverse(g) if g != 0.0 else move)
+    _, m_back, s2_back, g_back = mode_step(y, w, r, mu, dyn, params, law, comps)
     z = g_back * (x - y)
-    if not (s2_back > 0.0 and (dims == 3 or 1.0 + z.real > 0.0)):  # one component: x has no preimage from y
+    if not (s2_back > 0.0 and (comps == 2 or 1.0 + z.real > 0.0)):  # one component: x has no preimage from y
         return x, 1.0
-    back = _log1p(z, dims) * _inverse(g_back) if g_back != 0.0 else x - y
+    back = _log1p(z, comps) * _inverse(g_back) if g_back != 0.0 else x - y
     log_alpha = (x.real * x.real + x.imag * x.imag - y.real * y.real - y.imag * y.imag) / (2.0 * mu * kT)
     shift = back - m_back
     xi2_back = (shift.real * shift.real + shift.imag * shift.imag) / s2_back
-    log_alpha += _log_proposal(xi2_back, g_back * back, dims) - _log_proposal(xi.real * xi.real + xi.imag * xi.imag, g_w, dims)
-    log_alpha += 0.5 * (dims - 1) * math.log(s2 / s2_back)
+    log_alpha += _log_proposal(xi2_back, g_back * back, comps) - _log_proposal(xi.real * xi.real + xi.imag * xi.imag, g_w, comps)
+    log_alpha += 0.5 * comps * math.log(s2 / s2_back)
     if log_alpha >= 0.0:
         return y, 0.0
     alpha = math.exp(log_alpha)
@@ -232,10 +239,10 @@ def update_pair(vel, omega, bodies, dyn, params, law, key, pairs, geometry, p):
     x, ax, ay, az, bx, by, bz = contact_mode(vel, omega, i, k, ri, rk, nx, ny, nz, dyn.dims)
     rejection, rejected = 0.0, False
     if dyn.noise:
-        y, rejection = _propose(x, w, r, mu, dyn, params, law, key, i, k)
+        y, rejection = _propose(x, w, r, mu, dyn, params, law, key, i, k, dyn.dims - 1)
         rejected = y == x and rejection > 0.0
     else:
-        y = x * math.exp(-mu * mode_step(x, w, r, mu, dyn, params, law)[0] * dyn.dt)
+        y = x * math.exp(-mu * mode_step(x, w, r, mu, dyn, params, law, dyn.dims - 1)[0] * dyn.dt)
     if y == x:
         return rejection, rejected
     jp, jq = (x.real - y.real) / mu, (x.imag - y.imag) / mu  # impulse on i: u_perp -> u_perp - mu J
@@ -264,6 +271,106 @@ def _sweep(motion, bodies, dyn, params, law, key, pairs, geometry, classes):
             p = order[j]
             rejection[p], rejected[p] = update_pair(vel, omega, bodies, dyn, params, law, key, pairs, geometry, p)
     return rejection, rejected
+
+
+#: The engine's ids of the rolling and spinning modes (docs/physics-modes.md).
+ROLL, SPIN = 1, 2
+
+
+@numba.njit(inline="always", cache=True)
+def rolling_mode(omega, i, k, reff, nx, ny, nz, dims, mode):
+    """(x, e1x, e1y, e1z, e2x, e2y, e2z, components) of the rolling (``mode`` ROLL) or spinning (SPIN) mode
+    of pair (i, k): v_roll = R_eff (w_i - w_k) x n as x = v_roll . (e1 + i e2) (3-D), R_eff (w_iz - w_kz)
+    (2-D, one component), v_spin = R_eff (w_i - w_k) . n (one component; e1 = n)."""
+    dx, dy, dz = omega[i, 0] - omega[k, 0], omega[i, 1] - omega[k, 1], omega[i, 2] - omega[k, 2]
+    if mode == SPIN:
+        return complex(reff * (dx * nx + dy * ny + dz * nz), 0.0), nx, ny, nz, 0.0, 0.0, 0.0, 1
+    if dims == 2:
+        return complex(reff * dz, 0.0), 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1
+    cx, cy, cz = cross(dx, dy, dz, nx, ny, nz)
+    (ax, ay, az), (bx, by, bz) = _tangents(nx, ny, nz, dims)
+    return complex(reff * (cx * ax + cy * ay + cz * az), reff * (cx * bx + cy * by + cz * bz)), ax, ay, az, bx, by, bz, 2
+
+
+@numba.njit(inline="always", cache=True)
+def update_rolling(omega, bodies, dyn, params, law, has_weight, key, pairs, geometry, p, mode):
+    """Pair p's step of its rolling (``mode`` ROLL) or spinning (SPIN) mode, the law's kernels ``law`` =
+    (contact, slope, weight) with parameters ``params``: the Metropolis-adjusted move of x (as for sliding)
+    with the mode's mobility mu_m = R_eff^2 (1/I_i + 1/I_k), then the impulse J = (y - x) / mu_m along
+    C_m^T: omega_i += R_eff/I_i n x J, omega_k -= R_eff/I_k n x J (rolling; R_eff J along z in 2-D),
+    omega_i += R_eff/I_i J n, omega_k -= R_eff/I_k J n (spinning). Only spins change. Returns (the
+    rejection probability, rejected)."""
+    i, k = pairs[p, 0], pairs[p, 1]
+    nx, ny, nz, r = geometry[p, 0], geometry[p, 1], geometry[p, 2], geometry[p, 3]
+    ri, rk = bodies.radius[i], bodies.radius[k]
+    reff = ri * rk / (ri + rk)
+    mu = reff * reff * (bodies.inv_inertia[i] + bodies.inv_inertia[k])
+    w = law[2](r / (ri + rk), params) / (ri + rk) if has_weight else 1.0
+    x, ax, ay, az, bx, by, bz, comps = rolling_mode(omega, i, k, reff, nx, ny, nz, dyn.dims, mode)
+    rejection, rejected = 0.0, False
+    if dyn.noise:
+        y, rejection = _propose(x, w, r, mu, dyn, params, law, key, i, k, comps)
+        rejected = y == x and rejection > 0.0
+    else:
+        y = x * math.exp(-mu * mode_step(x, w, r, mu, dyn, params, law, comps)[0] * dyn.dt)
+    if y == x:
+        return rejection, rejected
+    jp, jq = (y.real - x.real) / mu, (y.imag - x.imag) / mu
+    jx, jy, jz = jp * ax + jq * bx, jp * ay + jq * by, jp * az + jq * bz  # J in the lab frame (along e1 = n or z for one component)
+    if mode == ROLL and dyn.dims == 3:
+        jx, jy, jz = cross(nx, ny, nz, jx, jy, jz)
+    for particle, sign in ((i, reff), (k, -reff)):
+        turn = sign * bodies.inv_inertia[particle]
+        omega[particle, 0] += turn * jx
+        omega[particle, 1] += turn * jy
+        omega[particle, 2] += turn * jz
+    return rejection, rejected
+
+
+@numba.njit(parallel=True, cache=True)
+def _sweep_modes(motion, bodies, dyn, couplings, law, modes, keys, pairs, geometry, classes):
+    """The modes of every pair, colour after colour, the pairs of a colour in parallel: sliding (where its law
+    acts), then rolling, then spinning, each from the velocities the previous one left (the modes couple,
+    docs/physics-modes.md); returns (pair rejection-probability sums, rejections)."""
+    order, first = classes
+    vel, omega = motion.velocity, motion.omega
+    rejection, rejected = np.zeros(pairs.shape[0]), np.zeros(pairs.shape[0], dtype=np.int64)
+    rolling, spinning = (modes[0], modes[1], modes[2]), (modes[3], modes[4], modes[5])
+    roll_params, spin_params = couplings.rolling_law, couplings.spinning_law
+    for colour in range(first.size - 1):
+        for j in numba.prange(first[colour], first[colour + 1]):
+            p = order[j]
+            total, count = 0.0, 0
+            if couplings.sliding:
+                a, b = update_pair(vel, omega, bodies, dyn, couplings.law, law, keys[0], pairs, geometry, p)
+                total, count = total + a, count + b
+            if couplings.rolling:
+                a, b = update_rolling(omega, bodies, dyn, roll_params, rolling, couplings.rolling_weight, keys[1], pairs, geometry, p, ROLL)
+                total, count = total + a, count + b
+            if couplings.spinning:
+                a, b = update_rolling(
+                    omega, bodies, dyn, spin_params, spinning, couplings.spinning_weight, keys[2], pairs, geometry, p, SPIN
+                )
+                total, count = total + a, count + b
+            rejection[p], rejected[p] = total, count
+    return rejection, rejected
+
+
+@numba.njit(cache=True)
+def contact_step_modes(motion, bodies, dyn, couplings, law, modes, lists, touching, keys):
+    """The pairwise step of every mode of all pairs in contact: ``law`` = (contact, slope, weight) of the
+    sliding law, ``modes`` those of the rolling and spinning laws (records.MODE_KERNELS), ``keys`` the
+    step's keys of the CONTACT, ROLLING and SPINNING streams. Returns (proposals, rejections, sum of
+    rejection probabilities) over the modes."""
+    pairs, geometry = find_contacts(motion.position, bodies, dyn, couplings, law[2], lists, touching)
+    classes = colour_classes(pairs, motion.position.shape[0])
+    rejection, rejected = _sweep_modes(motion, bodies, dyn, couplings, law, modes, keys, pairs, geometry, classes)
+    total, count = 0.0, 0
+    for p in range(pairs.shape[0]):  # in pair order: the same sum on any number of threads
+        total += rejection[p]
+        count += rejected[p]
+    active = int(couplings.sliding) + int(couplings.rolling) + int(couplings.spinning)
+    return pairs.shape[0] * active if dyn.noise else 0, count, total
 
 
 @numba.njit(cache=True)

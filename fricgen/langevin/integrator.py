@@ -16,6 +16,9 @@ dt is the splitting B A O A C B (docs/physics.md#integrators-that-match-the-calc
   order, with D taken where the calculus demands: at the start (Itô, Euler–Maruyama), averaged over
   start and predicted end (Stratonovich, stochastic Heun) or at the predicted end
   (Hänggi–Klimontovich); the prediction is the Euler–Maruyama kick, same noise.
+  Laws on the rolling and spinning modes (docs/physics-modes.md) join both schemes: the pairwise step
+  updates each pair's modes in turn (contact_step.contact_step_modes), the kick adds their torques
+  (fricgen.langevin.modes); a run with a sliding law only takes the paper's path, unchanged.
 
 Immobile (wall) particles have inverse mass and inertia 0: they never move, and drop out of
 mu_ik = 1/m_i + 1/m_k + R_i^2/I_i + R_k^2/I_k. Kernels enter as first-class functions of the
@@ -31,12 +34,13 @@ from numba import types
 
 from fricgen.derive.calculus import Calculus
 
-from ..rng import CONTACT, SOLVENT, stream_key
-from .contact_step import contact_step
+from ..rng import CONTACT, ROLLING, SOLVENT, SPINNING, stream_key
+from .contact_step import contact_step, contact_step_modes
 from .forces import conservative_forces
+from .modes import MODE_FIELDS, gather_modes, mode_slots
 from .neighbors import neighbor_list, still_valid
 from .pairs import PAIR_FIELDS, TERMS, WCA_RANGE, gather, pair_slots
-from .records import BODIES, COUPLINGS, DYNAMICS, KERNELS, MOTION, NEIGHBOR_LIST
+from .records import BODIES, COUPLINGS, DYNAMICS, KERNELS, MODE_KERNELS, MOTION, NEIGHBOR_LIST
 from .single_particle import half_kick, kick_drift_solvent, solvent_coefficients
 
 OK, NOT_FINITE, OVERLAP = 0, 1, 2  # status of advance()
@@ -73,27 +77,30 @@ def _correct(new, bodies, dyn, terms, again):
 
 
 @numba.njit(cache=True)
-def _per_slot(listed, explicit):
+def _per_slot(listed, explicit, modes):
     """For a neighbour list: (start, neighbors, reverse), the explicit kick's pair slots (none for the
-    pairwise step) and ``touching``, the pairs in contact that the force pass marks."""
+    pairwise step), ``touching``, the pairs in contact that the force pass marks, and the explicit
+    kick's slots of the rolling and spinning modes (none unless ``modes``)."""
     lists = (listed.start, listed.neighbors, listed.reverse)
     slots = np.zeros((listed.neighbors.size if explicit else 0, PAIR_FIELDS))
-    return lists, slots, np.zeros(listed.neighbors.size, dtype=np.bool_)
+    mode_slots = np.zeros((listed.neighbors.size if explicit and modes else 0, MODE_FIELDS))
+    return lists, slots, np.zeros(listed.neighbors.size, dtype=np.bool_), mode_slots
 
 
-#: advance(motion, bodies, dynamics, couplings, kernels, neighbour list, first step, steps) -> (status, steps,
-#: neighbour builds, contact proposals, rejections, sum of rejection probabilities, neighbour list)
+#: advance(motion, bodies, dynamics, couplings, kernels, mode kernels, neighbour list, first step, steps) -> (status,
+#: steps, neighbour builds, contact proposals, rejections, sum of rejection probabilities, neighbour list)
 _ADVANCE = types.Tuple([types.int64] * 5 + [types.float64, NEIGHBOR_LIST])(
-    MOTION, BODIES, DYNAMICS, COUPLINGS, KERNELS, NEIGHBOR_LIST, types.int64, types.int64
+    MOTION, BODIES, DYNAMICS, COUPLINGS, KERNELS, MODE_KERNELS, NEIGHBOR_LIST, types.int64, types.int64
 )
 
 
 @numba.njit(_ADVANCE, cache=True)
-def advance(motion, bodies, dyn, couplings, kernels, listed, first_step, steps):
+def advance(motion, bodies, dyn, couplings, kernels, modes, listed, first_step, steps):
     """Advance the motion in place by ``steps`` steps from step ``first_step``; returns (status, steps
     done, neighbour builds), the pairwise contact step's tally (proposals, rejections, sum of the
     rejection probabilities 1 - min(1, alpha)) and the neighbour list to pass to the next call.
-    ``kernels``: (force, contact, slope, weight) as records.KERNELS; ``listed``: the list the last call returned
+    ``kernels``: (force, contact, slope, weight) as records.KERNELS, ``modes`` the rolling and spinning laws'
+    kernels (records.MODE_KERNELS; ``couplings`` says which laws act); ``listed``: the list the last call returned
     (NeighborList.unbuilt() at first), kept while still valid for the motion's positions.
 
     status: OK, NOT_FINITE (a velocity became inf or NaN) or OVERLAP (r < overlap_limit sigma_ik).
@@ -110,7 +117,8 @@ def advance(motion, bodies, dyn, couplings, kernels, listed, first_step, steps):
     solvent = solvent_coefficients(bodies, dyn)
     proposals, rejections, rejection = 0, 0, 0.0
     explicit = dyn.friction and not dyn.pairwise
-    lists, slots, touching = _per_slot(listed, explicit)
+    only_sliding = couplings.sliding and not (couplings.rolling or couplings.spinning)  # the paper's contact: its own path
+    lists, slots, touching, spin_slots = _per_slot(listed, explicit, not only_sliding)
     terms, again = np.zeros((TERMS if explicit else 1, size, 3)), np.zeros((TERMS if explicit else 0, size, 3))
     force = terms[0]  # the conservative force (the explicit kick's pair pass fills it with the contact terms)
     new = (np.empty((size, 3)), np.empty((size, 3)))
@@ -119,14 +127,17 @@ def advance(motion, bodies, dyn, couplings, kernels, listed, first_step, steps):
         n = step - first_step
         if kick_drift_solvent(motion, bodies, dyn, force, solvent, stream_key(dyn.seed, step, SOLVENT), listed.reference) > 0.5 * skin:
             listed = neighbor_list(pos, dyn.box, dims, cutoff)
-            lists, slots, touching = _per_slot(listed, explicit)
+            lists, slots, touching, spin_slots = _per_slot(listed, explicit, not only_sliding)
             builds += 1
         key = stream_key(dyn.seed, step, CONTACT)
+        keys = (stream_key(dyn.seed, step, ROLLING), stream_key(dyn.seed, step, SPINNING)) if not only_sliding else (key, key)
         if explicit:
-            closest = pair_slots(
-                (pos, vel, omega), bodies, dyn, couplings, pot_force, contact, weight, lists, (key, True, dyn.noise, True), slots
-            )
+            switches = (key, couplings.sliding, dyn.noise, True)
+            closest = pair_slots((pos, vel, omega), bodies, dyn, couplings, pot_force, contact, weight, lists, switches, slots)
             gather(bodies.radius, lists, slots, terms)
+            if not only_sliding:
+                mode_slots((pos, vel, omega), bodies, dyn, couplings, modes, lists, keys, dyn.noise, spin_slots)
+                gather_modes(size, lists, spin_slots, terms)
         else:
             closest = conservative_forces(pos, bodies, dyn, couplings, pot_force, lists, force, touching)
         if closest < dyn.overlap_limit:
@@ -134,13 +145,19 @@ def advance(motion, bodies, dyn, couplings, kernels, listed, first_step, steps):
         if explicit:
             _contact_kick(motion, bodies, dyn, terms, new)
             if dyn.noise and dyn.scheme != _ITO:
-                pair_slots(
-                    (pos, new[0], new[1]), bodies, dyn, couplings, pot_force, contact, weight, lists, (key, True, True, False), slots
-                )
+                switches = (key, couplings.sliding, True, False)
+                pair_slots((pos, new[0], new[1]), bodies, dyn, couplings, pot_force, contact, weight, lists, switches, slots)
                 gather(bodies.radius, lists, slots, again)
+                if not only_sliding:
+                    mode_slots((pos, new[0], new[1]), bodies, dyn, couplings, modes, lists, keys, True, spin_slots)
+                    gather_modes(size, lists, spin_slots, again)
                 _correct(new, bodies, dyn, terms, again)
-        elif dyn.friction:
+        elif dyn.friction and only_sliding:
             tally = contact_step(motion, bodies, dyn, couplings, (contact, slope, weight), lists, touching, key)
+            proposals, rejections, rejection = proposals + tally[0], rejections + tally[1], rejection + tally[2]
+        elif dyn.friction:
+            modes_keys = (key, keys[0], keys[1])
+            tally = contact_step_modes(motion, bodies, dyn, couplings, (contact, slope, weight), modes, lists, touching, modes_keys)
             proposals, rejections, rejection = proposals + tally[0], rejections + tally[1], rejection + tally[2]
         if explicit:
             vel[:] = new[0]

@@ -61,13 +61,30 @@ class Dynamics(NamedTuple):
     threads: int
 
 
+_NONE = np.zeros(0)
+
+
 class Couplings(NamedTuple):
     """Parameter values of the pair potential and of the friction law, and whether the law has a
-    weight w(r) (else w = 1)."""
+    weight w(r) (else w = 1); then the contact modes (docs/physics-modes.md): whether the law of
+    ``law`` acts (``sliding``; else the sliding slot holds no law), whether a rolling and a spinning
+    law act, their parameter values and whether each has a weight."""
 
     potential: np.ndarray
     law: np.ndarray
     has_weight: bool
+    sliding: bool = True
+    rolling: bool = False
+    spinning: bool = False
+    rolling_law: np.ndarray = _NONE
+    spinning_law: np.ndarray = _NONE
+    rolling_weight: bool = False
+    spinning_weight: bool = False
+
+    @property
+    def modes_only_sliding(self) -> bool:
+        """Whether only the sliding law acts (the engine's sliding-only path)."""
+        return self.sliding and not (self.rolling or self.spinning)
 
 
 class NeighborList(NamedTuple):
@@ -92,10 +109,13 @@ class NeighborList(NamedTuple):
 MOTION = types.NamedUniTuple(_M, 4, Motion)
 BODIES = types.NamedUniTuple(_V, 3, Bodies)
 DYNAMICS = types.NamedTuple([_V, _V, _V, _I, _F, _F, _F, _F, _F, _I, _I, _B, _B, _B, _F, _F, _I], Dynamics)
-COUPLINGS = types.NamedTuple([_V, _V, _B], Couplings)
+COUPLINGS = types.NamedTuple([_V, _V, _B, _B, _B, _B, _V, _V, _B, _B], Couplings)
 #: The compiled kernels of a run, (force, contact, slope, weight): the pair potential's force(r / sigma_ik, params), the law's
 #: contact(u, w, r, mu, kT, params) -> (f/u, D) in its calculus, the friction slope df/du(u, w, r, params) and the weight
 #: w(r / sigma_ik, params) (fricgen.kernels). A plain tuple: Numba converts compiled kernels to first-class functions in
 #: a tuple, not in a named tuple.
 KERNELS = types.Tuple([SCALAR_KERNEL, CONTACT_KERNEL, FRICTION_KERNEL, SCALAR_KERNEL])
+#: The kernels of the rolling and spinning laws, (contact, slope, weight) of each as in KERNELS (those of
+#: another law where a mode has none: Couplings says which act).
+MODE_KERNELS = types.Tuple([CONTACT_KERNEL, FRICTION_KERNEL, SCALAR_KERNEL] * 2)
 NEIGHBOR_LIST = types.NamedTuple([_L, _L, _L, _M, _V, _F], NeighborList)

@@ -7,7 +7,7 @@ the calculus its noise amplitude D was derived for, pairwise or explicitly (fric
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import NamedTuple
 
 import numba
@@ -16,7 +16,7 @@ import numpy as np
 from ..errors import ConfigError, SimulationError
 from ..kernels import LawKernels, load_law_kernels, load_potential, no_weight
 from . import integrator
-from .config import LangevinConfig
+from .config import LangevinConfig, Law
 from .records import Bodies, Couplings, Dynamics, Motion, NeighborList
 from .system import Particles, State
 from .threads import ThreadChoice
@@ -58,6 +58,60 @@ def pair_mobilities(particles: Particles, limit: int = TABLES) -> np.ndarray:
     return np.array(found)
 
 
+#: The contact modes, in the order the engine updates them (docs/physics-modes.md).
+MODES = ("sliding", "rolling", "spinning")
+
+
+def mode_mobilities(particles: Particles, mode: str, limit: int = TABLES) -> np.ndarray:
+    """As :func:`pair_mobilities`, for the rolling and spinning modes: mu_m = R_eff^2 (1/I_i + 1/I_k),
+    R_eff = R_i R_k / (R_i + R_k), bit for bit as fricgen.langevin.contact_step.update_rolling computes it."""
+    if mode == "sliding":
+        return pair_mobilities(particles, limit)
+    kinds, counts = np.unique(np.stack([particles.radius, particles.inv_inertia], axis=1), axis=0, return_counts=True)
+    kinds = kinds[np.argsort(-counts, kind="stable")]
+    found: list[float] = []
+    for top in range(len(kinds)):
+        for i, k in ((j, top) for j in range(top + 1)):
+            for (ri, ii), (rk, ik) in ((kinds[i], kinds[k]), (kinds[k], kinds[i])):
+                reff = float(ri * rk / (ri + rk))
+                mu = reff * reff * float(ii + ik)
+                if mu > 0.0 and mu not in found and len(found) < limit:
+                    found.append(mu)
+    return np.array(found)
+
+
+def mode_laws(law: Law, kernels: Sequence[LawKernels], dim: int) -> dict[str, tuple[LawKernels, dict[str, float], str]]:
+    """The laws of a pair's contact modes: {mode: (kernels, parameter overrides, config key)} from the
+    ``[law]`` section and the kernels of its laws (``name``, then ``rolling``, ``spinning`` where given, in
+    that order). ConfigError, naming the key, for a law on another mode than its key says, two laws on
+    one mode, a mode the ``dim``-D pair does not have (spinning in 2-D), or a calculus a rolling or
+    spinning law lacks."""
+    keys = [
+        ("name", law.parameters, None),
+        ("rolling", law.rolling_parameters, "rolling"),
+        ("spinning", law.spinning_parameters, "spinning"),
+    ]
+    named = [(key, params, mode) for key, params, mode in keys if key == "name" or getattr(law, key) is not None]
+    found: dict[str, tuple[LawKernels, dict[str, float], str]] = {}
+    for (key, params, mode), kernel in zip(named, kernels, strict=True):
+        acts = kernel.mode
+        if mode is not None and acts != mode:
+            raise ConfigError(
+                f"law.{key}", f"law {kernel.name} acts on the {acts} mode, not {mode}", f'name a law whose file says mode = "{mode}"'
+            )
+        if acts in found:
+            other = found[acts][2]
+            raise ConfigError(f"law.{key}", f"a second law for the {acts} mode ({other} names {found[acts][0].name})", "one law per mode")
+        if acts == "spinning" and dim == 2:
+            raise ConfigError(f"law.{key}", f"law {kernel.name} acts on spinning, which does not exist in 2-D", "remove it, or run in 3-D")
+        if key != "name" and law.calculus not in kernel.calculi:  # law.name's: KernelError where its kernels are taken
+            raise ConfigError(
+                f"law.{key}", f"law {kernel.name} has no {law.calculus!r} noise", f"choose a calculus of {list(kernel.calculi)}"
+            )
+        found[acts] = (kernel, dict(params), f"law.{key}")
+    return found
+
+
 class Simulation:
     """Runs a configuration on a state (in place); ``run`` calls observers between chunks.
 
@@ -68,31 +122,67 @@ class Simulation:
     changed between calls is safe.
 
     ``law``: the law's kernels, resolved once by the caller (:func:`fricgen.load_law`, for a law of a
-    folder of one's own); by default ``config.law.name`` is looked up when the simulation is created
-    (FRICGEN_LAWS's folders, then the built-in catalogue)."""
+    folder of one's own), or a sequence of them for ``config.law.name``, ``rolling`` and ``spinning``
+    (those given, in this order); by default the names are looked up when the simulation is created
+    (FRICGEN_LAWS's folders, then the built-in catalogue). Each law acts on the contact mode its file
+    names (:func:`mode_laws`; docs/physics-modes.md)."""
 
     threads: int | None = None
 
-    def __init__(self, config: LangevinConfig, particles: Particles, state: State, law: LawKernels | None = None):
+    def __init__(self, config: LangevinConfig, particles: Particles, state: State, law: LawKernels | Sequence[LawKernels] | None = None):
         self.config, self.particles, self.state = config, particles, state
-        law, self.kernels = config.law, law if law is not None else load_law_kernels(config.law.name)
-        if self.kernels.name != law.name:
-            handed = f"is {law.name!r}, but the kernels handed to the simulation are those of {self.kernels.name!r}"
-            raise ConfigError("law.name", handed, "give one law")
+        names = [config.law.name, *(n for n in (config.law.rolling, config.law.spinning) if n is not None)]
+        handed = [law] if isinstance(law, LawKernels) else list(law) if law is not None else [load_law_kernels(n) for n in names]
+        law = config.law
+        if [k.name for k in handed] != names:
+            if len(names) == len(handed) == 1:
+                given = f"is {names[0]!r}, but the kernels handed to the simulation are those of {handed[0].name!r}"
+            else:
+                given = f"names the laws {names}, but the kernels handed to the simulation are those of {[k.name for k in handed]}"
+            raise ConfigError("law.name", given, "give one law per name")
+        self.kernels, self.laws = handed[0], tuple(handed)
+        self.modes = mode_laws(law, handed, state.dim)
         self.contact = self.kernels.contact(law.calculus)  # raises for a calculus the law does not have
-        fixed = {"sigma": 1.0, "epsilon": config.epsilon}  # the engine scales distances by sigma_ik = R_i + R_k
-        params = dict(law.parameters) | {name: value for name, value in fixed.items() if name in self.kernels.parameter_names}
         self.potential = load_potential(config.potential)
-        values = self.kernels.parameters(**params)
-        tabulate = getattr(self.kernels.module, f"tabulate_{law.calculus}", None)  # noise tables of an integral-form D
-        if tabulate is not None:
-            values = tabulate(pair_mobilities(particles), config.thermostat.kT, values)
-        self.couplings = Couplings(np.array([config.epsilon, 1.0]), values, self.kernels.has_weight)
+        values = self._values(self.kernels, law.parameters, "law.name", self.kernels.mode)
+        sliding = self.kernels.mode == "sliding"
+        extra = {mode: self.modes.get(mode) for mode in ("rolling", "spinning")}
+        laws = {mode: (self._values(*found, mode) if found else np.zeros(0)) for mode, found in extra.items()}
+        weights = {mode: bool(found and found[0].has_weight) for mode, found in extra.items()}
+        self.couplings = Couplings(
+            np.array([config.epsilon, 1.0]), values, self.kernels.has_weight and sliding, sliding, extra["rolling"] is not None,
+            extra["spinning"] is not None, laws["rolling"], laws["spinning"], weights["rolling"], weights["spinning"],
+        )  # fmt: skip
         self.neighbor_list, self.neighbor_builds = NeighborList.unbuilt(), 0  # the list is kept while valid
         self.tally = ContactTally(0, 0, 0.0)
         self.thread_choice = ThreadChoice(numba.get_num_threads())
         if state.dim == 2 and (state.position[:, 2].any() or config.bulk.vector[2]):
             raise ConfigError("bulk.force", "2-D states have z = 0 and no bulk force along z", "give [Fx, Fy]")
+
+    def _values(self, kernels: LawKernels, overrides: dict[str, float], key: str, mode: str) -> np.ndarray:
+        """A law's parameter values for the engine: the overrides, sigma and epsilon where the law has them, the
+        noise tables of an integral-form D for the mode's most common mobilities. ``key``: the law's in [law]."""
+        fixed = {"sigma": 1.0, "epsilon": self.config.epsilon}  # the engine scales distances by sigma_ik = R_i + R_k
+        params = dict(overrides) | {name: value for name, value in fixed.items() if name in kernels.parameter_names}
+        try:
+            values = kernels.parameters(**params)
+        except ConfigError as error:
+            if key == "law.name":
+                raise
+            raise ConfigError(error.key.replace("law.parameters", f"{key}_parameters", 1), error.problem, error.fix) from None
+        tabulate = getattr(kernels.module, f"tabulate_{self.config.law.calculus}", None)  # noise tables of an integral-form D
+        if tabulate is not None:
+            values = tabulate(mode_mobilities(self.particles, mode), self.config.thermostat.kT, values)
+        return values
+
+    def mode_kernels(self) -> tuple:
+        """The rolling and spinning laws' kernels, (contact, slope, weight) of each as records.MODE_KERNELS; the
+        sliding slot's where a mode has no law (the couplings say which act)."""
+        calculus, out = self.config.law.calculus, []
+        for mode in ("rolling", "spinning"):
+            kernels = self.modes[mode][0] if mode in self.modes else self.kernels
+            out += [kernels.contact(calculus), kernels.friction_slope, kernels.module.weight if kernels.has_weight else no_weight]
+        return tuple(out)
 
     @property
     def scheme(self) -> str:
@@ -138,6 +228,7 @@ class Simulation:
             self.dynamics(),
             self.couplings,
             self.step_kernels(),
+            self.mode_kernels(),
             self.neighbor_list,
             s.step,
             steps,

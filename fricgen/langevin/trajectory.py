@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import os
+from collections.abc import Sequence
 from pathlib import Path
 
 import gsd.fl
@@ -114,20 +115,27 @@ def save_checkpoint(path: str | Path, simulation: Simulation) -> Path:
             config=json.dumps(simulation.config.as_dict()),
             law_file=str(simulation.kernels.path or ""),
             law_hash=simulation.kernels.source_hash,
+            **({"mode_laws": _mode_laws(simulation.laws[1:])} if len(simulation.laws) > 1 else {}),
         )
     os.replace(temporary, path)
     return path
 
 
-def load_checkpoint(path: str | Path, law: LawKernels | None = None) -> Simulation:
+def _mode_laws(laws: Sequence[LawKernels]) -> str:
+    """The rolling and spinning laws of a run as JSON, [[name, law file, hash], ...] (checked on resume)."""
+    return json.dumps([[k.name, str(k.path or ""), k.source_hash] for k in laws])
+
+
+def load_checkpoint(path: str | Path, law: LawKernels | Sequence[LawKernels] | None = None) -> Simulation:
     """A Simulation that continues exactly where :func:`save_checkpoint` left it.
 
-    A checkpoint records the law file it ran (path and hash): resuming with kernels of another
-    version of the law is refused.
+    A checkpoint records the law files it ran (path and hash; those of the rolling and spinning laws
+    too): resuming with kernels of another version of a law is refused.
 
     Args:
         path: a file written by :func:`save_checkpoint`.
-        law: the law's kernels (:func:`fricgen.load_law`); None looks the stored name up.
+        law: the law's kernels (:func:`fricgen.load_law`), or those of each law of ``[law]`` (name,
+            rolling, spinning) as :class:`Simulation` takes them; None looks the stored names up.
 
     Returns:
         The simulation at the saved step.
@@ -147,12 +155,16 @@ def load_checkpoint(path: str | Path, law: LawKernels | None = None) -> Simulati
             int(data["step"]),
         )
         recorded = (str(data["law_file"]), str(data["law_hash"])) if "law_hash" in data.files else None
-    law = law if law is not None else load_law_kernels(config.law.name)
-    if recorded is not None and recorded[1] != law.source_hash:
-        ran = recorded[0] or f"law {config.law.name}"
-        raise ConfigError(
-            "law",
-            f"the checkpoint ran {ran} (hash {recorded[1][:12]}), not {law.path or law.name} (hash {law.source_hash[:12]})",
-            "resume with the law file the run started with, or start a new run",
-        )
-    return Simulation(config, particles, state, law)
+        modes = json.loads(str(data["mode_laws"])) if "mode_laws" in data.files else []
+    names = [config.law.name, *(n for n in (config.law.rolling, config.law.spinning) if n is not None)]
+    laws = [law] if isinstance(law, LawKernels) else list(law) if law is not None else [load_law_kernels(n) for n in names]
+    ran = [*([[config.law.name, *recorded]] if recorded is not None else []), *modes]
+    for (name, file, digest), kernels in zip(ran, laws if recorded is not None else laws[1:]):
+        if digest != kernels.source_hash:
+            given = f"{kernels.path or kernels.name} (hash {kernels.source_hash[:12]})"
+            raise ConfigError(
+                "law",
+                f"the checkpoint ran {file or f'law {name}'} (hash {digest[:12]}), not {given}",
+                "resume with the law file the run started with, or start a new run",
+            )
+    return Simulation(config, particles, state, laws)

@@ -71,6 +71,10 @@ CHECK_FLAGS = {
     "thermostat.kT": "--kT",
     "law.calculus": "--calculus",
     "law.contact_scheme": "--contact-scheme",
+    "law.rolling": "--rolling",
+    "law.spinning": "--spinning",
+    "law.rolling_parameters": "--rolling-param",
+    "law.spinning_parameters": "--spinning-param",
 }
 
 
@@ -78,10 +82,13 @@ def _thermostat_check(args: argparse.Namespace) -> int:
     """fricgen thermostat-check LAW ...: the statistical test of a law's thermostat, as JSON."""
     from ..studies.thermostat_check import passive_check, passive_run
 
-    laws.check_law_names([args.law])
-    laws.check_calculus(args.law, args.calculus)
+    named = [args.law, *(name for name in (args.rolling, args.spinning) if name is not None)]
+    laws.check_law_names(named)
+    for name in named:
+        laws.check_calculus(name, args.calculus)
     options = {"dim": args.dim, "calculus": args.calculus, "contact_scheme": args.contact_scheme, "n": args.n, "phi": args.phi}
-    options |= {"dt": args.dt, "kT": args.kT}
+    options |= {"dt": args.dt, "kT": args.kT, "rolling": args.rolling, "spinning": args.spinning}
+    options |= {"rolling_parameters": dict(args.rolling_param), "spinning_parameters": dict(args.spinning_param)}
     with named_by_flags(CHECK_FLAGS):
         check = passive_check(
             args.law,
@@ -253,7 +260,9 @@ def parser() -> argparse.ArgumentParser:
     noise.set_defaults(run=_noise)
 
     check = commands.add_parser("thermostat-check", help="statistical test: does the law thermalise a passive system to kT?")
-    check.add_argument("law", metavar="LAW")
+    check.add_argument("law", metavar="LAW", help="the law, on the contact mode its file names (sliding by default)")
+    check.add_argument("--rolling", metavar="LAW", help='a law on the rolling mode besides LAW (its file says mode = "rolling")')
+    check.add_argument("--spinning", metavar="LAW", help='a law on the spinning mode besides LAW (3-D only; mode = "spinning")')
     check.add_argument("--dim", type=int, choices=(2, 3), default=2)
     check.add_argument("--calculus", choices=CALCULI, default="ito")
     check.add_argument("--no-contact-noise", action="store_true", help="drop the frictional noise (the inconsistent model)")
@@ -271,6 +280,10 @@ def parser() -> argparse.ArgumentParser:
     check.add_argument("--time", type=float, default=40.0, help="simulated time (the first 10%% equilibrates)")
     check.add_argument("--seed", type=int, default=1)
     check.add_argument("--param", type=_assignment, action="append", default=[], metavar="NAME=VALUE")
+    for mode in ("rolling", "spinning"):
+        check.add_argument(
+            f"--{mode}-param", type=_assignment, action="append", default=[], metavar="NAME=VALUE", help=f"of the {mode} law"
+        )
     check.add_argument("--json", action="store_true")
     laws.add_laws_flag(check)
     check.set_defaults(run=_thermostat_check)

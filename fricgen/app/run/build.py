@@ -18,7 +18,7 @@ import numpy as np
 
 from ...errors import ConfigError, KernelError
 from ...kernels import LawKernels, load_law_kernels, user_laws
-from ...langevin.simulation import Simulation
+from ...langevin.simulation import Simulation, mode_laws
 from ...langevin.system import (
     Particles,
     State,
@@ -34,20 +34,36 @@ from .checkpoints import check_checkpoint
 from .config import RunConfig, check_fraction, slab_half_height
 
 
-def resolve_law(c: RunConfig, laws: Sequence[str] = ()) -> LawKernels:
-    """The kernels of the run's law, looked up in the law folders ``laws`` (``--laws``) and the
-    configuration's ``law.folder``, then FRICGEN_LAWS's, then the built-in catalogue; checked: fresh,
-    with the calculus and the parameters. ConfigError naming the key otherwise."""
-    name = c.law.name
-    try:
-        with user_laws(*laws, *c.law.folders):
-            kernels = load_law_kernels(name)
-    except KernelError as error:
-        raise ConfigError("law.name", str(error)) from error
-    if c.law.calculus not in kernels.calculi:
-        raise ConfigError("law.calculus", f"law {name} has no {c.law.calculus!r} noise", f"choose one of {list(kernels.calculi)}")
-    kernels.parameters(**c.law.parameters)
-    return kernels
+def resolve_law(c: RunConfig, laws: Sequence[str] = ()) -> list[LawKernels]:
+    """The kernels of the run's laws (``law.name``, then ``law.rolling`` and ``law.spinning`` where given),
+    looked up in the law folders ``laws`` (``--laws``) and the configuration's ``law.folder``, then
+    FRICGEN_LAWS's, then the built-in catalogue; checked: fresh, with the calculus and the parameters,
+    one law per contact mode, each on a mode the dimension has (:func:`fricgen.langevin.simulation.mode_laws`).
+    ConfigError naming the key otherwise."""
+    found = []
+    for key, name, parameters in (
+        ("name", c.law.name, c.law.parameters),
+        ("rolling", c.law.rolling, c.law.rolling_parameters),
+        ("spinning", c.law.spinning, c.law.spinning_parameters),
+    ):
+        if name is None:
+            continue
+        try:
+            with user_laws(*laws, *c.law.folders):
+                kernels = load_law_kernels(name)
+        except KernelError as error:
+            raise ConfigError(f"law.{key}", str(error)) from error
+        if key == "name" and c.law.calculus not in kernels.calculi:
+            raise ConfigError("law.calculus", f"law {name} has no {c.law.calculus!r} noise", f"choose one of {list(kernels.calculi)}")
+        try:
+            kernels.parameters(**parameters)
+        except ConfigError as error:
+            if key == "name":
+                raise
+            raise ConfigError(error.key.replace("law.parameters", f"law.{key}_parameters", 1), error.problem, error.fix) from None
+        found.append(kernels)
+    mode_laws(c.law, found, c.system.dimension)
+    return found
 
 
 def check(c: RunConfig, laws: Sequence[str] = ()) -> None:

@@ -106,7 +106,7 @@ def _plan(config: RunConfig, command: list[str], out: str | None, resume: str | 
     check_checkpoint(checkpoint)
     fresh = build(config, laws)
     try:
-        simulation = load_checkpoint(checkpoint, law=fresh.kernels)
+        simulation = load_checkpoint(checkpoint, law=fresh.laws)
     except ConfigError:  # a checkpoint of another version of the law
         raise
     except (OSError, ValueError, KeyError, TypeError) as error:  # a file that is no checkpoint, or one of another version
