@@ -10,15 +10,14 @@ choices, help text, default) as the parser has them, so the reference cannot dri
 ``{fricgen-cli}`` without an argument renders the top-level command. When the build ends, a
 subcommand that no page documented is a warning (an error under ``sphinx-build -W``).
 
-The parser is found through the ``fricgen`` console script: the function ``parser()`` in the module
-that defines its ``main`` (override with ``fricgen_cli_parser = "module:function"`` in conf.py).
+The parser is the one the ``fricgen`` command runs: :func:`fricgen.app.cli.commands.parser` (override
+with ``fricgen_cli_parser = "module:function"`` in conf.py).
 """
 
 from __future__ import annotations
 
 import argparse
 import importlib
-import importlib.metadata
 import os
 
 from docutils import nodes
@@ -31,14 +30,15 @@ logger = logging.getLogger(__name__)
 WIDTH = "100"  # columns of the rendered usage lines (argparse reads COLUMNS)
 
 
+#: The function that builds the parser of the ``fricgen`` command (the console script's
+#: fricgen.__main__.main runs fricgen.app.cli.commands.main, which parses with it).
+DEFAULT_PARSER = "fricgen.app.cli.commands:parser"
+
+
 def _parser_function(config_value: str | None):
-    """The function that builds the parser: ``module:function`` from conf.py, else ``parser`` beside the script's ``main``."""
-    if config_value:
-        module, _, name = config_value.partition(":")
-        return getattr(importlib.import_module(module), name)
-    script = next(e for e in importlib.metadata.entry_points(group="console_scripts") if e.name == "fricgen")
-    main = script.load()
-    return importlib.import_module(main.__module__).parser
+    """The function that builds the parser: ``module:function`` from conf.py, else :data:`DEFAULT_PARSER`."""
+    module, _, name = (config_value or DEFAULT_PARSER).partition(":")
+    return getattr(importlib.import_module(module), name)
 
 
 def build_parser(app) -> argparse.ArgumentParser:
