@@ -1,0 +1,72 @@
+"""The MIPS phase diagram of issue 28 (Fig. 8 of Hofmann et al. 2025) from finished ``fricgen run``
+folders of a grid over the active force F0 and the area fraction, for the paper's three models.
+
+Each folder is analysed as the Fig. 7 runs are (docs/studies/report.py: both criteria fixed in
+advance, on the frames of the run's second half pooled, and on every frame alone): the paper's
+criterion (exactly two maxima of the smoothed local-area-fraction histogram) and the strict one
+(fricgen.app.studies.mips.bimodality: two maxima 0.2 apart, dip ratio at most 0.5). Written:
+``fig8.json`` (the rows, with each run's per-frame series) and ``fig8.png`` (one panel per model,
+F0 against area fraction: filled = strictly separated, open = bimodal only, cross = neither;
+the dip ratio and the frames passing the strict criterion beside each point). Usage (from the
+folder that holds the sweep's output)::
+
+    nice -n 10 python docs/studies/fig8_report.py out/fig8_coarse/*/ --results docs/studies/results
+
+Folders without summary.json (still running) are listed as not finished and skipped.
+"""
+
+from __future__ import annotations
+
+import json
+
+from matplotlib.figure import Figure
+from report import analyse, arguments, finished_runs, table_row  # docs/studies/report.py, beside this script
+
+from fricgen.app.studies import mips
+
+DEFAULT = ("out/fig8_coarse/*/",)
+MODELS = ("no friction", "no noise", "consistent")
+
+
+def verdict(run: dict) -> str:
+    """'separated' (strict), 'bimodal' (the paper's criterion only) or 'mixed'."""
+    pooled = run["pooled"]
+    return "separated" if pooled["phase_separated"] else "bimodal" if pooled["bimodal"] else "mixed"
+
+
+def phase_figure(runs: list[dict], path) -> None:
+    """F0 against area fraction, one panel per model, each point marked by its verdict."""
+    figure = Figure(figsize=(12, 4), layout="constrained")
+    axes = figure.subplots(1, len(MODELS), sharex=True, sharey=True)
+    style = {"separated": {"marker": "o", "color": "C3"}, "bimodal": {"marker": "o", "facecolors": "none", "edgecolors": "C3"}}
+    style["mixed"] = {"marker": "x", "color": "C0"}
+    for axis, model in zip(axes, MODELS):
+        for run in (r for r in runs if r["model"] == model):
+            axis.scatter(run["packing_fraction"], run["F0"], s=90, **style[verdict(run)])
+            dip = run["pooled"]["dip_ratio"]
+            label = f"{'-' if dip is None else f'{dip:.2f}'} ({run['frames_separated']}/{run['frames_window']})"
+            axis.annotate(label, (run["packing_fraction"], run["F0"]), textcoords="offset points", xytext=(0, 9), ha="center", fontsize=7)
+        axis.margins(x=0.15, y=0.15)
+        axis.set_title(model)
+        axis.set_xlabel("area fraction")
+    axes[0].set_ylabel("F0 (kT / sigma)")
+    figure.suptitle("filled: strictly separated, open: bimodal only, x: neither; dip ratio (frames passing / frames), second half pooled")
+    figure.savefig(path, dpi=110)
+
+
+def main(argv: list[str] | None = None) -> None:
+    args = arguments(argv, __doc__.splitlines()[0], DEFAULT)
+    runs, pending = finished_runs(args.folders, analyse)
+    runs.sort(key=lambda run: (MODELS.index(run["model"]), run["F0"], run["packing_fraction"]))
+    args.results.mkdir(parents=True, exist_ok=True)
+    record = {"criterion_paper": "exactly two local maxima of the smoothed pooled histogram", "criterion_strict": mips.CRITERION}
+    record.update(runs=[{**run, "verdict": verdict(run)} for run in runs], not_finished=pending)
+    (args.results / "fig8.json").write_text(json.dumps(record, indent=1) + "\n")
+    phase_figure(runs, args.results / "fig8.png")
+    for run in runs:
+        print(table_row(run))
+    print("not finished:", pending)
+
+
+if __name__ == "__main__":
+    main()
