@@ -13,13 +13,16 @@ import os
 import subprocess
 import sys
 import textwrap
+import types
 
+import numba
 import numpy as np
 import pytest
 
 import fricgen
 from fricgen.derive.driver import generate
 from fricgen.errors import ConfigError
+from fricgen.kernels import CONTACT_KERNEL, LawKernels
 from fricgen.langevin import Particles, Simulation, State, lattice_state
 from fricgen.langevin.analysis import Sampler, block_estimate
 
@@ -121,6 +124,25 @@ def test_the_explicit_kick_of_every_mode_keeps_kT_and_cools_without_the_noise(la
     assert at_kT(*result), result
     cold = temperatures(simulation(laws, names, contact_scheme="explicit", dt=5e-4, contact_noise=False), 5.0)
     assert cold[2] < 1 - 10 * cold[3], cold
+
+
+def test_a_wrong_rolling_D_shows_in_the_explicit_kick(laws):
+    """The rolling law's kernels with D doubled: the explicit kick heats the rotation by many errors (the
+    right D keeps kT, above), while the pairwise step keeps kT for any D and shows it in its rejection rate."""
+    right = laws["rolling_linear"]
+    contact = right.module.contact_ito
+
+    @numba.njit(CONTACT_KERNEL.signature)
+    def doubled(u, w, r, mu, kT, params):
+        ratio, amplitude = contact(u, w, r, mu, kT, params)
+        return ratio, 2.0 * amplitude
+
+    wrong = LawKernels(right.name, types.SimpleNamespace(**{**vars(right.module), "contact_ito": doubled}), right.path)
+    hot = temperatures(simulation({"rolling_linear": wrong}, ("rolling_linear",), contact_scheme="explicit", dt=5e-4), 5.0)
+    assert hot[2] > 1 + 6 * hot[3], hot  # measured: 1.084 +- 0.008
+    kept = simulation({"rolling_linear": wrong}, ("rolling_linear",))
+    assert at_kT(*temperatures(kept, 10.0))
+    assert kept.tally.rejection_rate > 1e-3  # the linear law's right D is never rejected (an exact OU proposal)
 
 
 @pytest.mark.parametrize("scheme", ["pairwise", "explicit"])
