@@ -32,7 +32,10 @@ def test_a_law_file_names_its_mode_and_sliding_is_the_default(tmp_path, laws):
     law = load_law(path)
     assert law.mode == "rolling"
     assert law_text(law).count('mode = "rolling"') == 1
-    assert all(law.mode == "sliding" and "mode" not in law_text(law) for law in laws.values())
+    sliding = [law for law in laws.values() if law.mode == "sliding"]
+    assert sliding and all("mode" not in law_text(law) for law in sliding)  # the default is not written
+    assert laws["rolling_coulomb_newton"].mode == "rolling"  # the catalogue's rolling law
+    assert law_text(laws["rolling_coulomb_newton"]).count('mode = "rolling"') == 1
 
 
 @pytest.mark.parametrize(
