@@ -181,14 +181,14 @@ def _tangents(nx, ny, nz, dims):
 
 
 @numba.njit(inline="always", cache=True)
-def _propose(x, w, r, mu, dyn, params, law, key, i, k, comps):
-    """(y, 1 - min(1, alpha)) of the Metropolis–Hastings move of a mode of ``comps`` components from x;
-    y = x if the move leaves the map's principal strip (a proposal to stay) or D = 0."""
+def _propose(x, w, r, mu, dyn, params, law, key, comps):
+    """(y, 1 - min(1, alpha)) of the Metropolis–Hastings move of a mode of ``comps`` components from x,
+    drawn with the pair's key (rng.pair_key: draws 0 and 1 the normals, 2 the uniform); y = x if the
+    move leaves the map's principal strip (a proposal to stay) or D = 0."""
     kT = dyn.kT
     _, m, s2, g = mode_step(x, w, r, mu, dyn, params, law, comps)
     if not s2 > 0.0:
         return x, 0.0
-    key = pair_key(key, i, k)  # draws 0 and 1: the normals, 2: the uniform
     xi = complex(ziggurat_normal(key, 0), ziggurat_normal(key, 1) if comps == 2 else 0.0)
     move = m + math.sqrt(s2) * xi
     g_w = g * move
@@ -239,7 +239,7 @@ def update_pair(vel, omega, bodies, dyn, params, law, key, pairs, geometry, p):
     x, ax, ay, az, bx, by, bz = contact_mode(vel, omega, i, k, ri, rk, nx, ny, nz, dyn.dims)
     rejection, rejected = 0.0, False
     if dyn.noise:
-        y, rejection = _propose(x, w, r, mu, dyn, params, law, key, i, k, dyn.dims - 1)
+        y, rejection = _propose(x, w, r, mu, dyn, params, law, pair_key(key, i, k), dyn.dims - 1)
         rejected = y == x and rejection > 0.0
     else:
         y = x * math.exp(-mu * mode_step(x, w, r, mu, dyn, params, law, dyn.dims - 1)[0] * dyn.dt)
@@ -293,9 +293,9 @@ def rolling_mode(omega, i, k, reff, nx, ny, nz, dims, mode):
 
 
 @numba.njit(inline="always", cache=True)
-def update_rolling(omega, bodies, dyn, params, law, has_weight, key, pairs, geometry, p, mode):
-    """Pair p's step of its rolling (``mode`` ROLL) or spinning (SPIN) mode, the law's kernels ``law`` =
-    (contact, slope, weight) with parameters ``params``: the Metropolis-adjusted move of x (as for sliding)
+def update_rolling(omega, bodies, dyn, params, law, key, pairs, geometry, p, mode):
+    """Pair p's step of its rolling (``mode`` ROLL) or spinning (SPIN) mode, the law's kernels and weight flag
+    ``law`` = (contact, slope, weight, has_weight) with parameters ``params``: the Metropolis-adjusted move of x (as for sliding)
     with the mode's mobility mu_m = R_eff^2 (1/I_i + 1/I_k), then the impulse J = (y - x) / mu_m along
     C_m^T: omega_i += R_eff/I_i n x J, omega_k -= R_eff/I_k n x J (rolling; R_eff J along z in 2-D),
     omega_i += R_eff/I_i J n, omega_k -= R_eff/I_k J n (spinning). Only spins change. Returns (the
@@ -305,11 +305,11 @@ def update_rolling(omega, bodies, dyn, params, law, has_weight, key, pairs, geom
     ri, rk = bodies.radius[i], bodies.radius[k]
     reff = ri * rk / (ri + rk)
     mu = reff * reff * (bodies.inv_inertia[i] + bodies.inv_inertia[k])
-    w = law[2](r / (ri + rk), params) / (ri + rk) if has_weight else 1.0
+    w = law[2](r / (ri + rk), params) / (ri + rk) if law[3] else 1.0
     x, ax, ay, az, bx, by, bz, comps = rolling_mode(omega, i, k, reff, nx, ny, nz, dyn.dims, mode)
     rejection, rejected = 0.0, False
     if dyn.noise:
-        y, rejection = _propose(x, w, r, mu, dyn, params, law, key, i, k, comps)
+        y, rejection = _propose(x, w, r, mu, dyn, params, law, pair_key(key, i, k), comps)
         rejected = y == x and rejection > 0.0
     else:
         y = x * math.exp(-mu * mode_step(x, w, r, mu, dyn, params, law, comps)[0] * dyn.dt)
@@ -335,7 +335,8 @@ def _sweep_modes(motion, bodies, dyn, couplings, law, modes, keys, pairs, geomet
     order, first = classes
     vel, omega = motion.velocity, motion.omega
     rejection, rejected = np.zeros(pairs.shape[0]), np.zeros(pairs.shape[0], dtype=np.int64)
-    rolling, spinning = (modes[0], modes[1], modes[2]), (modes[3], modes[4], modes[5])
+    rolling = (modes[0], modes[1], modes[2], couplings.rolling_weight)
+    spinning = (modes[3], modes[4], modes[5], couplings.spinning_weight)
     roll_params, spin_params = couplings.rolling_law, couplings.spinning_law
     for colour in range(first.size - 1):
         for j in numba.prange(first[colour], first[colour + 1]):
@@ -345,12 +346,10 @@ def _sweep_modes(motion, bodies, dyn, couplings, law, modes, keys, pairs, geomet
                 a, b = update_pair(vel, omega, bodies, dyn, couplings.law, law, keys[0], pairs, geometry, p)
                 total, count = total + a, count + b
             if couplings.rolling:
-                a, b = update_rolling(omega, bodies, dyn, roll_params, rolling, couplings.rolling_weight, keys[1], pairs, geometry, p, ROLL)
+                a, b = update_rolling(omega, bodies, dyn, roll_params, rolling, keys[1], pairs, geometry, p, ROLL)
                 total, count = total + a, count + b
             if couplings.spinning:
-                a, b = update_rolling(
-                    omega, bodies, dyn, spin_params, spinning, couplings.spinning_weight, keys[2], pairs, geometry, p, SPIN
-                )
+                a, b = update_rolling(omega, bodies, dyn, spin_params, spinning, keys[2], pairs, geometry, p, SPIN)
                 total, count = total + a, count + b
             rejection[p], rejected[p] = total, count
     return rejection, rejected

@@ -32,12 +32,12 @@ MODE_FIELDS = 6
 
 
 @numba.njit(inline="always", cache=True)
-def _torque(jp, jq, ax, ay, az, bx, by, bz, nx, ny, nz, reff, mode, dims):
-    """R_eff times C_m^T's spin block of i applied to the mode-space vector J = jp e1 + jq e2: R_eff n x J
-    (rolling, 3-D), R_eff J (2-D rolling, e1 = z; spinning, e1 = n)."""
-    jx, jy, jz = jp * ax + jq * bx, jp * ay + jq * by, jp * az + jq * bz
+def _torque(jp, jq, e1, e2, n, reff, mode, dims):
+    """R_eff times C_m^T's spin block of i applied to the mode-space vector J = jp e1 + jq e2 (tangents
+    e1, e2 and normal n as 3-tuples): R_eff n x J (rolling, 3-D), R_eff J (2-D rolling, e1 = z; spinning, e1 = n)."""
+    jx, jy, jz = jp * e1[0] + jq * e2[0], jp * e1[1] + jq * e2[1], jp * e1[2] + jq * e2[2]
     if mode == ROLL and dims == 3:
-        jx, jy, jz = cross(nx, ny, nz, jx, jy, jz)
+        jx, jy, jz = cross(n[0], n[1], n[2], jx, jy, jz)
     return reff * jx, reff * jy, reff * jz
 
 
@@ -79,14 +79,14 @@ def mode_slots(coordinates, bodies, dyn, couplings, modes, lists, keys, noise_on
                 w = weight(r / sigma, params) / sigma if weighted else 1.0
                 x, ax, ay, az, bx, by, bz, comps = rolling_mode(omega, i, k, reff, nx, ny, nz, dims, mode)
                 ratio, amplitude = contact(math.sqrt(x.real * x.real + x.imag * x.imag), w, r, mu, kT, params)
-                tx, ty, tz = _torque(-ratio * x.real, -ratio * x.imag, ax, ay, az, bx, by, bz, nx, ny, nz, reff, mode, dims)
+                tx, ty, tz = _torque(-ratio * x.real, -ratio * x.imag, (ax, ay, az), (bx, by, bz), (nx, ny, nz), reff, mode, dims)
                 slots[slot, 0] += tx
                 slots[slot, 1] += ty
                 slots[slot, 2] += tz
                 if noise_on:
                     kick, draws = math.sqrt(amplitude) * noise_scale, pair_key(key, i, k)
                     xi1, xi2 = ziggurat_normal(draws, 0), ziggurat_normal(draws, 1) if comps == 2 else 0.0
-                    tx, ty, tz = _torque(kick * xi1, kick * xi2, ax, ay, az, bx, by, bz, nx, ny, nz, reff, mode, dims)
+                    tx, ty, tz = _torque(kick * xi1, kick * xi2, (ax, ay, az), (bx, by, bz), (nx, ny, nz), reff, mode, dims)
                     slots[slot, 3] += tx
                     slots[slot, 4] += ty
                     slots[slot, 5] += tz
