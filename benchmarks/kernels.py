@@ -18,8 +18,8 @@ import time
 
 import numba
 import numpy as np
-from fricgen.generated.special import erfcx
 
+from fricgen.generated.special import erfcx
 from fricgen.kernels import load_law_kernels
 
 SQRT_PI = math.sqrt(math.pi)

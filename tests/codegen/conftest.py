@@ -1,6 +1,6 @@
 import pytest
-from fricgen.derive import catalogue, derive_noise
 
+from fricgen.derive import catalogue, derive_noise
 from fricgen.kernels import load_law_kernels
 
 

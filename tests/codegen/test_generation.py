@@ -6,14 +6,14 @@ import subprocess
 import sys
 from pathlib import Path
 
-import fricgen.derive.driver
 import pytest
+
+import fricgen.derive.driver
+import fricgen.kernels
 from fricgen.derive.driver import GENERATED, GenerationError, generate
 from fricgen.derive.law import lawdata
 from fricgen.derive.law.lawdata import CATALOGUE, POTENTIALS, read_law_data
 from fricgen.derive.noise.verification import Report
-
-import fricgen.kernels
 from fricgen.errors import ConfigError, FricgenError
 from fricgen.kernels import KernelError, load_law_kernels, load_potential
 

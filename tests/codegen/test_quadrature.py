@@ -4,6 +4,7 @@ import math
 
 import numpy as np
 import pytest
+
 from fricgen.derive.law.symbols import kT, mu, r, w
 from fricgen.derive.noise.reference import reference_amplitude
 

@@ -9,10 +9,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from fricgen.derive.driver import generate
-from fricgen.derive.law.lawdata import CATALOGUE, POSITIVE, Interval
 
 import fricgen.kernels
+from fricgen.derive.driver import generate
+from fricgen.derive.law.lawdata import CATALOGUE, POSITIVE, Interval
 from fricgen.errors import ConfigError
 from fricgen.kernels import KernelError, LawKernels, load_law_kernels, load_potential
 

@@ -11,6 +11,7 @@ import mpmath
 import numpy as np
 import pytest
 import sympy as sp
+
 from fricgen.derive.law.potentials import EXTERNAL_POTENTIALS, PAIR_POTENTIALS
 from fricgen.derive.law.symbols import kT, mu, r, u, w
 from fricgen.derive.noise.derivation import branches

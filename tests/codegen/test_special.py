@@ -7,12 +7,13 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 import sympy as sp
+from scipy.special import erfcx as reference
+from sympy.codegen.cfunctions import expm1
+
 from fricgen.derive.backends.printing import expm1_given_exp as given_exp_function
 from fricgen.derive.backends.printing import share_exp
 from fricgen.derive.backends.special_functions.pieces import erfcx_pieces
 from fricgen.generated.special import _DENOMINATOR, _NUMERATOR, _PIECES, erfcx, expm1_given_exp
-from scipy.special import erfcx as reference
-from sympy.codegen.cfunctions import expm1
 
 
 def test_erfcx_matches_scipy():

@@ -8,13 +8,13 @@ from __future__ import annotations
 import argparse
 
 import pytest
+
+from fricgen.app.cli.arguments import Parser
+from fricgen.app.cli.lammps import add_lammps_command, plugin_texts, run_lammps
 from fricgen.derive import catalogue
 from fricgen.derive.backends.lammps_plugin.module import LammpsCalculusError, check_calculus
 from fricgen.derive.driver import PLUGIN_MODES
 from fricgen.derive.law.catalogues import GENERATED
-
-from fricgen.app.cli.arguments import Parser
-from fricgen.app.cli.lammps import add_lammps_command, plugin_texts, run_lammps
 from fricgen.errors import ConfigError
 from fricgen.kernels import load_law_kernels
 

@@ -1,6 +1,7 @@
 import os
 
 import pytest
+
 from fricgen.derive import catalogue, derive_noise, verify
 from fricgen.derive.noise import lemma_cache
 

@@ -8,6 +8,7 @@ import sys
 
 import mpmath
 import pytest
+
 from fricgen.derive import derive_noise
 from fricgen.derive.backends.numba_kernels.accuracy import python_kernels
 from fricgen.derive.backends.special_functions import execute

@@ -2,6 +2,7 @@
 
 import pytest
 import sympy as sp
+
 from fricgen.derive import LawError, catalogue, contact_mobility, derive_noise, load_law, make_law, save_law
 from fricgen.derive.law.symbols import u, w
 

@@ -13,8 +13,8 @@ from fractions import Fraction
 
 import pytest
 import sympy as sp
-from fricgen.derive import contact_mobility, derive_noise, verify
-from fricgen.derive import driver
+
+from fricgen.derive import contact_mobility, derive_noise, driver, verify
 from fricgen.derive.backends import special_functions
 from fricgen.derive.backends.numba_kernels import modules
 from fricgen.derive.calculus import Calculus

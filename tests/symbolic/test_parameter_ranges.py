@@ -5,9 +5,10 @@ fails somewhere in its ranges is refused with the parameter values (fricgen.deri
 import math
 from pathlib import Path
 
-import fricgen.derive.law.ranges
 import pytest
 import sympy as sp
+
+import fricgen.derive.law.ranges
 from fricgen.derive import LawError, load_law, make_law, save_law
 from fricgen.derive.law.lawdata import POSITIVE, Interval, LawFileError, parse_range
 from fricgen.derive.law.laws import Parameter, law_text

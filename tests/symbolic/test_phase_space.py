@@ -2,6 +2,7 @@
 
 import pytest
 import sympy as sp
+
 from fricgen.derive.law.symbols import kT
 from fricgen.derive.noise import phase_space
 from fricgen.derive.noise.phase_space import (

@@ -2,6 +2,7 @@
 
 import pytest
 import sympy as sp
+
 from fricgen.derive.law.potentials import EXTERNAL_POTENTIALS, PAIR_POTENTIALS, Potential, check_external, x
 from fricgen.derive.law.symbols import kT, r
 

@@ -5,6 +5,7 @@ one line; it never ends in a traceback."""
 import mpmath
 import pytest
 import sympy as sp
+
 from fricgen.derive import LawError, derive_noise, make_law, verify
 from fricgen.derive.backends.numba_kernels.accuracy import python_kernels
 from fricgen.derive.law.symbols import kT, mu, r, u, w

@@ -4,6 +4,7 @@ import dataclasses
 
 import pytest
 import sympy as sp
+
 from fricgen.derive import derive_noise, verify
 from fricgen.derive.law.symbols import kT, mu, u, w
 from fricgen.derive.noise.derivation import Calculus, integral_amplitude
