@@ -161,7 +161,8 @@ def passive_run(
     simulation = Simulation(check.langevin(), particles, state, law)
     steps = check.steps
     every = check.sample_period
-    simulation.run(steps // 10, every=steps // 10 or 1, observers=observers)  # equilibration from the lattice start
+    # equilibration from the lattice start, in chunks of the sampling period: Ctrl-C stops between two
+    simulation.run(steps // 10, every=min(every, steps // 10) or 1, observers=observers)
     sampler = Sampler(particles)
     simulation.run(steps - steps // 10, every=every, observers=[sampler, *observers])
     trans, rot = block_estimate(sampler.trans, BLOCKS), block_estimate(sampler.rot, BLOCKS)
