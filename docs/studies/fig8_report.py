@@ -17,12 +17,8 @@ Folders without summary.json (still running) are listed as not finished and skip
 
 from __future__ import annotations
 
-import json
-
 from matplotlib.figure import Figure
-from report import analyse, arguments, finished_runs, table_row  # docs/studies/report.py, beside this script
-
-from fricgen.app.studies import mips
+from report import analyse, arguments, finished_runs, write_record  # docs/studies/report.py, beside this script
 
 DEFAULT = ("out/fig8_coarse/*/",)
 MODELS = ("no friction", "no noise", "consistent")
@@ -58,14 +54,8 @@ def main(argv: list[str] | None = None) -> None:
     args = arguments(argv, __doc__.splitlines()[0], DEFAULT)
     runs, pending = finished_runs(args.folders, analyse)
     runs.sort(key=lambda run: (MODELS.index(run["model"]), run["F0"], run["packing_fraction"]))
-    args.results.mkdir(parents=True, exist_ok=True)
-    record = {"criterion_paper": "exactly two local maxima of the smoothed pooled histogram", "criterion_strict": mips.CRITERION}
-    record.update(runs=[{**run, "verdict": verdict(run)} for run in runs], not_finished=pending)
-    (args.results / "fig8.json").write_text(json.dumps(record, indent=1) + "\n")
+    write_record(args.results / "fig8.json", [{**run, "verdict": verdict(run)} for run in runs], pending)
     phase_figure(runs, args.results / "fig8.png")
-    for run in runs:
-        print(table_row(run))
-    print("not finished:", pending)
 
 
 if __name__ == "__main__":

@@ -210,18 +210,24 @@ def finished_runs(folders: list[Path], analyse) -> tuple[list[dict], list[str]]:
     return runs, pending
 
 
+def write_record(path: Path, runs: list[dict], pending: list[str]) -> None:
+    """``path`` as JSON: both criteria and the detector's settings, the runs, the folders not finished;
+    the runs' table rows and the pending folders printed."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    record = {"criterion_paper": "exactly two local maxima of the smoothed pooled histogram", "criterion_strict": mips.CRITERION}
+    record.update(kernel=mips.KERNEL, spacing=mips.SPACING, bin=mips.BIN, smoothing=mips.SMOOTHING, runs=runs, not_finished=pending)
+    path.write_text(json.dumps(record, indent=1) + "\n")
+    for run in runs:
+        print(table_row(run))
+    print("not finished:", pending)
+
+
 def main(argv: list[str] | None = None) -> None:
     """Analyse the folders given (default: out/fig7/*/), write fig7.json and fig7_dip_vs_time.png."""
     args = arguments(argv, __doc__.splitlines()[0], DEFAULT)
     runs, pending = finished_runs(args.folders, analyse)
-    args.results.mkdir(parents=True, exist_ok=True)
-    record = {"criterion_paper": "exactly two local maxima of the smoothed pooled histogram", "criterion_strict": mips.CRITERION}
-    record.update(kernel=mips.KERNEL, spacing=mips.SPACING, bin=mips.BIN, smoothing=mips.SMOOTHING, runs=runs, not_finished=pending)
-    (args.results / "fig7.json").write_text(json.dumps(record, indent=1) + "\n")
+    write_record(args.results / "fig7.json", runs, pending)
     dip_figure(runs, args.results / "fig7_dip_vs_time.png")
-    for run in runs:
-        print(table_row(run))
-    print("not finished:", pending)
 
 
 if __name__ == "__main__":

@@ -116,7 +116,8 @@ class RodSimulation:
         shape = (sampling.replicas, sampling.bins)
         counts = counts or (np.zeros(shape), np.zeros((*shape, sampling.gap_bins)))
         layer = CONTACT_LAYERS.index(numerics.contact_layer)
-        for chunk in [CHUNK_STEPS] * (steps // CHUNK_STEPS) + [steps % CHUNK_STEPS] * (steps % CHUNK_STEPS > 0):
+        for done in range(0, steps, CHUNK_STEPS):
+            chunk = min(CHUNK_STEPS, steps - done)
             stepping = Stepping(dt or numerics.dt, chunk, self.step, numerics.seed, sampling.gap_width, layer)
             status = bcd.advance_rods(self.positions, self.ring, stepping, self._field.force_field, self._pair.force, counts)
             if status == bcd.PASSED:
