@@ -30,14 +30,15 @@ class Law(Section):
     ``force_scheme`` is set (a wrong thermostat: for negative controls only). ``contact_scheme`` is
     "pairwise" (Metropolis-adjusted pair by pair: Maxwell–Boltzmann exact at any dt) or "explicit"
     (the first-order kick, where a wrong D shows in the temperatures; docs/physics.md#the-pairwise-contact-step).
-    ``contact_noise = false`` drops the frictional noise (the inconsistent model), ``friction = false``
-    the contact entirely.
+    ``contact_noise = false`` drops the frictional noise of every mode (the inconsistent model),
+    ``friction = false`` the contact entirely.
 
     Contact modes (docs/physics-modes.md): the law ``name`` acts on the mode its law file names (sliding by
     default); ``rolling`` and ``spinning`` name laws for those modes (their files must say so), with
     ``rolling_parameters`` and ``spinning_parameters`` overriding their defaults. One law per mode, all
-    in ``calculus``; spinning exists in 3-D only. The laws' modes are checked where the kernels are
-    loaded (fricgen.langevin.simulation.mode_laws)."""
+    in ``calculus``; spinning exists in 3-D only. ``rolling_noise = false`` (``spinning_noise = false``)
+    drops the noise of that mode's law alone and keeps the others' (a negative control per mode). The
+    laws' modes are checked where the kernels are loaded (fricgen.langevin.simulation.mode_laws)."""
 
     SECTION = "law"
     name: str = "coulomb_newton"
@@ -52,6 +53,8 @@ class Law(Section):
     rolling_parameters: dict[str, float] = field(default_factory=dict)
     spinning: str | None = None
     spinning_parameters: dict[str, float] = field(default_factory=dict)
+    rolling_noise: bool = True
+    spinning_noise: bool = True
 
     def __post_init__(self):
         self.require(
@@ -81,6 +84,12 @@ class Law(Section):
                 f"{mode}_parameters",
                 f"sets parameters of no law: law.{mode} names none",
                 f'name the {mode} law (law.{mode} = "...") or remove them',
+            )
+            self.require(
+                getattr(self, mode) is not None or getattr(self, f"{mode}_noise"),
+                f"{mode}_noise",
+                f"drops the noise of no law: law.{mode} names none",
+                f'name the {mode} law (law.{mode} = "...") or remove it',
             )
 
     @property

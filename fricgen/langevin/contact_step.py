@@ -294,8 +294,8 @@ def rolling_mode(omega, i, k, reff, nx, ny, nz, dims, mode):
 
 @numba.njit(inline="always", cache=True)
 def update_rolling(omega, bodies, dyn, params, law, key, pairs, geometry, p, mode):
-    """Pair p's step of its rolling (``mode`` ROLL) or spinning (SPIN) mode, the law's kernels and weight flag
-    ``law`` = (contact, slope, weight, has_weight) with parameters ``params``: the Metropolis-adjusted move of x (as for sliding)
+    """Pair p's step of its rolling (``mode`` ROLL) or spinning (SPIN) mode, the law's kernels, weight and noise flags
+    ``law`` = (contact, slope, weight, has_weight, noise) with parameters ``params``: the Metropolis-adjusted move of x (as for sliding)
     with the mode's mobility mu_m = R_eff^2 (1/I_i + 1/I_k), then the impulse J = (y - x) / mu_m along
     C_m^T: omega_i += R_eff/I_i n x J, omega_k -= R_eff/I_k n x J (rolling; R_eff J along z in 2-D),
     omega_i += R_eff/I_i J n, omega_k -= R_eff/I_k J n (spinning). Only spins change. Returns (the
@@ -308,7 +308,7 @@ def update_rolling(omega, bodies, dyn, params, law, key, pairs, geometry, p, mod
     w = law[2](r / (ri + rk), params) / (ri + rk) if law[3] else 1.0
     x, ax, ay, az, bx, by, bz, comps = rolling_mode(omega, i, k, reff, nx, ny, nz, dyn.dims, mode)
     rejection, rejected = 0.0, False
-    if dyn.noise:
+    if law[4]:
         y, rejection = _propose(x, w, r, mu, dyn, params, law, pair_key(key, i, k), comps)
         rejected = y == x and rejection > 0.0
     else:
@@ -335,8 +335,8 @@ def _sweep_modes(motion, bodies, dyn, couplings, law, modes, keys, pairs, geomet
     order, first = classes
     vel, omega = motion.velocity, motion.omega
     rejection, rejected = np.zeros(pairs.shape[0]), np.zeros(pairs.shape[0], dtype=np.int64)
-    rolling = (modes[0], modes[1], modes[2], couplings.rolling_weight)
-    spinning = (modes[3], modes[4], modes[5], couplings.spinning_weight)
+    rolling = (modes[0], modes[1], modes[2], couplings.rolling_weight, dyn.noise and couplings.rolling_noise)
+    spinning = (modes[3], modes[4], modes[5], couplings.spinning_weight, dyn.noise and couplings.spinning_noise)
     roll_params, spin_params = couplings.rolling_law, couplings.spinning_law
     for colour in range(first.size - 1):
         for j in numba.prange(first[colour], first[colour + 1]):
@@ -368,8 +368,9 @@ def contact_step_modes(motion, bodies, dyn, couplings, law, modes, lists, touchi
     for p in range(pairs.shape[0]):  # in pair order: the same sum on any number of threads
         total += rejection[p]
         count += rejected[p]
-    active = int(couplings.sliding) + int(couplings.rolling) + int(couplings.spinning)
-    return pairs.shape[0] * active if dyn.noise else 0, count, total
+    rolling, spinning = couplings.rolling and couplings.rolling_noise, couplings.spinning and couplings.spinning_noise
+    noisy = int(couplings.sliding) + int(rolling) + int(spinning)  # the modes proposed with their noise
+    return pairs.shape[0] * noisy if dyn.noise else 0, count, total
 
 
 @numba.njit(cache=True)

@@ -7,8 +7,9 @@ R_eff = R_i R_k / (R_i + R_k):
 
 - friction, a generalized force -C_m^T (f/u) v_m: the torque on i
   tau_i = -R_eff n x F_roll (rolling, 3-D), -R_eff F_roll z (2-D), -R_eff F_spin n (spinning);
-- noise, the impulse sqrt(D) sqrt(2 kT dt) C_m^T xi with xi standard normal in the mode's space
-  (one normal per component, keyed on (seed, step, ROLLING or SPINNING, i, k)): the same torques
+- noise (where the mode's noise acts: Couplings.rolling_noise, spinning_noise), the impulse
+  sqrt(D) sqrt(2 kT dt) C_m^T xi with xi standard normal in the mode's space (one normal per
+  component, keyed on (seed, step, ROLLING or SPINNING, i, k)): the same torques
   with F replaced by -sqrt(D) sqrt(2 kT dt) xi;
 
 and tau_k = -tau_i (a couple: no force). ``mode_slots`` writes them into one slot per pair of the
@@ -83,7 +84,7 @@ def mode_slots(coordinates, bodies, dyn, couplings, modes, lists, keys, noise_on
                 slots[slot, 0] += tx
                 slots[slot, 1] += ty
                 slots[slot, 2] += tz
-                if noise_on:
+                if noise_on and (couplings.rolling_noise if mode == ROLL else couplings.spinning_noise):
                     kick, draws = math.sqrt(amplitude) * noise_scale, pair_key(key, i, k)
                     xi1, xi2 = ziggurat_normal(draws, 0), ziggurat_normal(draws, 1) if comps == 2 else 0.0
                     tx, ty, tz = _torque(kick * xi1, kick * xi2, (ax, ay, az), (bx, by, bz), (nx, ny, nz), reff, mode, dims)

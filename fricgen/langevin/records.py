@@ -80,6 +80,8 @@ class Couplings(NamedTuple):
     spinning_law: np.ndarray = _NONE
     rolling_weight: bool = False
     spinning_weight: bool = False
+    rolling_noise: bool = True
+    spinning_noise: bool = True
 
     @property
     def modes_only_sliding(self) -> bool:
@@ -109,7 +111,7 @@ class NeighborList(NamedTuple):
 MOTION = types.NamedUniTuple(_M, 4, Motion)
 BODIES = types.NamedUniTuple(_V, 3, Bodies)
 DYNAMICS = types.NamedTuple([_V, _V, _V, _I, _F, _F, _F, _F, _F, _I, _I, _B, _B, _B, _F, _F, _I], Dynamics)
-COUPLINGS = types.NamedTuple([_V, _V, _B, _B, _B, _B, _V, _V, _B, _B], Couplings)
+COUPLINGS = types.NamedTuple([_V, _V, _B, _B, _B, _B, _V, _V, _B, _B, _B, _B], Couplings)
 #: The compiled kernels of a run, (force, contact, slope, weight): the pair potential's force(r / sigma_ik, params), the law's
 #: contact(u, w, r, mu, kT, params) -> (f/u, D) in its calculus, the friction slope df/du(u, w, r, params) and the weight
 #: w(r / sigma_ik, params) (fricgen.kernels). A plain tuple: Numba converts compiled kernels to first-class functions in

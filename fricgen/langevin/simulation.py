@@ -152,6 +152,7 @@ class Simulation:
         self.couplings = Couplings(
             np.array([config.epsilon, 1.0]), values, self.kernels.has_weight and sliding, sliding, extra["rolling"] is not None,
             extra["spinning"] is not None, laws["rolling"], laws["spinning"], weights["rolling"], weights["spinning"],
+            config.law.rolling_noise, config.law.spinning_noise,
         )  # fmt: skip
         self.neighbor_list, self.neighbor_builds = NeighborList.unbuilt(), 0  # the list is kept while valid
         self.tally = ContactTally(0, 0, 0.0)

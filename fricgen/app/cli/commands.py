@@ -75,6 +75,8 @@ CHECK_FLAGS = {
     "law.spinning": "--spinning",
     "law.rolling_parameters": "--rolling-param",
     "law.spinning_parameters": "--spinning-param",
+    "law.rolling_noise": "--no-rolling-noise",
+    "law.spinning_noise": "--no-spinning-noise",
 }
 
 
@@ -88,7 +90,8 @@ def _thermostat_check(args: argparse.Namespace) -> int:
         laws.check_calculus(name, args.calculus)
     options = {"dim": args.dim, "calculus": args.calculus, "contact_scheme": args.contact_scheme, "n": args.n, "phi": args.phi}
     options |= {"dt": args.dt, "kT": args.kT, "rolling": args.rolling, "spinning": args.spinning}
-    options |= {"rolling_parameters": dict(args.rolling_param), "spinning_parameters": dict(args.spinning_param)}
+    for mode in ("rolling", "spinning"):
+        options |= {f"{mode}_parameters": dict(getattr(args, f"{mode}_param")), f"{mode}_noise": not getattr(args, f"no_{mode}_noise")}
     with named_by_flags(CHECK_FLAGS):
         check = passive_check(
             args.law,
@@ -105,7 +108,7 @@ def _thermostat_check(args: argparse.Namespace) -> int:
     else:
         r = result
         print(
-            f"{r.law} ({r.calculus}, {r.dim}-D, contact noise {'on' if r.contact_noise else 'off'}): "
+            f"{r.laws} ({r.calculus}, {r.dim}-D, contact noise {'on' if r.contact_noise else 'off'}): "
             f"T_trans = {r.T_trans:.4f} +- {r.T_trans_err:.4f}, T_rot = {r.T_rot:.4f} +- {r.T_rot_err:.4f}, "
             f"KL = {r.kl_trans:.1e} / {r.kl_rot:.1e}: {'passed' if r.passed else 'FAILED'} ({r.seconds:.1f} s)"
             + ("" if r.rejection_rate is None else f"; {r.contact_scheme} contact step, rejection rate {r.rejection_rate:.2e}")
@@ -284,6 +287,7 @@ def parser() -> argparse.ArgumentParser:
         check.add_argument(
             f"--{mode}-param", type=_assignment, action="append", default=[], metavar="NAME=VALUE", help=f"of the {mode} law"
         )
+        check.add_argument(f"--no-{mode}-noise", action="store_true", help=f"drop the {mode} law's noise alone (a negative control)")
     check.add_argument("--json", action="store_true")
     laws.add_laws_flag(check)
     check.set_defaults(run=_thermostat_check)

@@ -142,6 +142,19 @@ class CheckResult:
     steps: int
     seconds: float
     rejection_rate: float | None  # the pairwise contact step's mean rejection probability (None: explicit, no noise or no friction)
+    rolling: str | None = None  # the rolling and spinning laws, if any, and whether their noise acted
+    spinning: str | None = None
+    rolling_noise: bool = True
+    spinning_noise: bool = True
+
+    @property
+    def laws(self) -> str:
+        """The laws of the check, by mode: "coulomb_newton + rolling_linear (rolling, no noise)"."""
+        named = [self.law]
+        for mode in ("rolling", "spinning"):
+            if getattr(self, mode) is not None:
+                named.append(f"{getattr(self, mode)} ({mode}{'' if getattr(self, f'{mode}_noise') else ', no noise'})")
+        return " + ".join(named)
 
     def as_dict(self) -> dict:
         return asdict(self)
@@ -190,6 +203,10 @@ def passive_run(
         steps,
         time.perf_counter() - start,
         simulation.tally.rejection_rate,
+        check.law.rolling,
+        check.law.spinning,
+        check.law.rolling_noise,
+        check.law.spinning_noise,
     )
     return result, sampler
 
