@@ -3,14 +3,16 @@
 Each run folder of ``fricgen sweep docs/studies/rolling.toml`` gets the row of the slit study
 (:func:`fig6_report.analyse`: eta and b with their frame errors, the inner fit, T_trans, T_rot, the
 sliding Coulomb-branch fraction) plus its rolling law and parameters (gamma_r, kappa_r; none for the
-points without rolling) and whether it ran with the contact noise. Each point is then compared with
-its reference without rolling at the same noise: with the noise, fig6's g6k5 (read from
-``results/fig6.json``, the same settings at 800 t0; or a run folder named ``point=g6k5`` when given),
-without the noise the point g6k5_nonoise: the difference of eta, b and T_rot and its error, the
-frame errors of the two added in quadrature (independent runs).
+points without rolling) and which noise it ran with (NOISES: every mode's, the sliding law's alone, none).
+Each point is then compared with its reference without rolling and with the sliding noise as its own:
+with it, fig6's g6k5 (read from ``results/fig6.json``, the same settings at 800 t0; or a run folder
+named ``point=g6k5`` when given), without it the point g6k5_nonoise: the difference of eta, b and
+T_rot and its error, the frame errors of the two added in quadrature (independent runs). A point
+without the rolling noise alone is also compared with the point of the same kappa_r with every noise:
+what the rolling noise does.
 
-Written: ``rolling.json`` and ``rolling.png`` (b, eta and T_rot against kappa_r, with and without
-the noise, the references as lines with their error bands). Usage (from the folder that holds the
+Written: ``rolling.json`` and ``rolling.png`` (b, eta and T_rot against kappa_r for each noise, the
+references as lines with their error bands). Usage (from the folder that holds the
 sweep's output)::
 
     nice -n 10 python docs/studies/rolling_report.py out/rolling/*/ --results docs/studies/results
@@ -35,21 +37,26 @@ DEFAULT = ("out/rolling/*/",)
 REFERENCE = "point=g6k5"
 #: The reference without the noise (law.contact_noise = false drops every mode's noise) and without rolling.
 REFERENCE_NO_NOISE = "point=g6k5_nonoise"
+#: The noises a point runs with: every mode's; the sliding law's alone (law.rolling_noise = false); none.
+NOISES = ("all", "sliding", "none")
 #: The quantities compared with the reference: (key, its error's key).
 COMPARED = {"eta": ("eta", "eta_err"), "slip": ("slip", "slip_err"), "T_rot": ("T_rot", None)}
 
 
 def analyse(folder: Path) -> dict:
-    """The slit row of one finished run folder, its rolling law and its noise (JSON-simple)."""
+    """The slit row of one finished run folder, its rolling law and its noise (JSON-simple; runs from before
+    law.rolling_noise existed had the rolling noise wherever they had the contact noise)."""
     config = json.loads((folder / "config.json").read_text())
     law = config["law"]
     rolling = law.get("rolling")
     parameters = law.get("rolling_parameters", {}) if rolling else {}
+    noise = "none" if not law["contact_noise"] else "all" if law.get("rolling_noise", True) or not rolling else "sliding"
     return slit_row(folder) | {
         "rolling": rolling,
         "gamma_r": parameters.get("gamma_r"),
         "kappa_r": parameters.get("kappa_r"),
         "contact_noise": law["contact_noise"],
+        "noise": noise,
     }
 
 
@@ -85,16 +92,20 @@ def figure(runs: list[dict], refs: dict, path: Path) -> Path:
     """b, eta and T_rot against kappa_r: filled with the noise, open without; the references as bands."""
     fig = Figure(figsize=(5, 8), layout="constrained")
     axes = fig.subplots(3, 1, sharex=True)
-    styles = {True: ("C0", "o", "full", "with noise"), False: ("C3", "s", "none", "without noise")}
+    styles = {
+        "all": ("C0", "o", "full", "with noise"),
+        "sliding": ("C2", "^", "none", "without the rolling noise"),
+        "none": ("C3", "s", "none", "without noise"),
+    }
     for ax, key, label in zip(axes, COMPARED, (r"$\eta$ ($k_BT t_0/\sigma^3$)", r"$b$ ($\sigma$)", r"$T_\mathrm{rot}$ ($k_BT$)")):
         for noise, (colour, marker, fill, name) in styles.items():
-            chosen = sorted((r for r in runs if r["rolling"] and r["contact_noise"] == noise), key=lambda r: r["kappa_r"])
+            chosen = sorted((r for r in runs if r["rolling"] and r["noise"] == noise), key=lambda r: r["kappa_r"])
             if chosen:
                 x = [r["kappa_r"] for r in chosen]
                 y, dy = zip(*(value_error(r, key) for r in chosen))
                 ax.errorbar(x, y, dy, color=colour, marker=marker, fillstyle=fill, capsize=3, label=name)
-            if noise in refs:
-                y, dy = value_error(refs[noise], key)
+            if noise != "sliding" and (noise == "all") in refs:
+                y, dy = value_error(refs[noise == "all"], key)
                 ax.axhspan(y - dy, y + dy, color=colour, alpha=0.15, lw=0)
                 ax.axhline(y, color=colour, ls="--", lw=0.8, label=f"no rolling, {name}")
         ax.set_ylabel(label)
@@ -111,7 +122,7 @@ def figure(runs: list[dict], refs: dict, path: Path) -> Path:
 def table_row(run: dict) -> str:
     """The run's row of the table of docs/studies/rolling.md (markdown): the rolling columns, then
     fig6's row without its gamma_f, kappa_f, delta_w and seed columns."""
-    rolling = [f"{run['kappa_r']:g}" if run["rolling"] else "–", "yes" if run["contact_noise"] else "no"]
+    rolling = [f"{run['kappa_r']:g}" if run["rolling"] else "–", {"all": "yes", "sliding": "sliding only", "none": "no"}[run["noise"]]]
     cells = slit_table_row(run).strip("| ").split(" | ")
     return "| " + " | ".join([cells[0], *rolling, *cells[5:]]) + " |"
 
@@ -126,6 +137,11 @@ def main(argv: list[str] | None = None) -> None:
         for run in runs
         if run["rolling"] and run["contact_noise"] in refs
     ]
+    consistent = {run["kappa_r"]: run for run in runs if run["rolling"] and run["noise"] == "all"}
+    for run in runs:  # what the rolling noise alone does: the same kappa_r with every noise
+        if run["noise"] == "sliding" and run["kappa_r"] in consistent:
+            same = consistent[run["kappa_r"]]
+            compared.append({"run": run["run"], "reference": same["run"]} | difference(run, same))
     if True in refs and False in refs:  # the noise without rolling: what dropping the sliding noise alone does
         compared.append({"run": refs[False]["run"], "reference": refs[True]["run"]} | difference(refs[False], refs[True]))
     args.results.mkdir(parents=True, exist_ok=True)
