@@ -16,22 +16,10 @@ measuring every distance again (fricgen.langevin.contact_step.find_contacts).
 
 from __future__ import annotations
 
-import math
-
 import numba
 import numpy as np
 
-from .neighbors import separation
-from .pairs import WCA_RANGE
-
-
-@numba.njit(inline="always", cache=True)
-def _pair_reach(pos, i, k, sigma, box, inv_box, dims):
-    """(dx, dy, dz, r) of the pair, r = |r_k - r_i|, or r = inf beyond the potential's range."""
-    dx, dy, dz = separation(pos, i, k, box, inv_box, dims)
-    r2 = dx * dx + dy * dy + dz * dz
-    reach = WCA_RANGE * sigma
-    return dx, dy, dz, (math.sqrt(r2) if r2 < reach * reach else np.inf)
+from .pairs import pair_reach
 
 
 @numba.njit(cache=True)
@@ -47,7 +35,7 @@ def _each_pair_once(pos, bodies, cell, pot_force, params, lists, force, touching
             if k < i or (inv_mass[i] == 0.0 and inv_mass[k] == 0.0):
                 continue
             sigma = radius[i] + radius[k]
-            dx, dy, dz, r = _pair_reach(pos, i, k, sigma, box, inv_box, dims)
+            dx, dy, dz, r = pair_reach(pos, i, k, sigma, box, inv_box, dims)
             if r == np.inf:
                 continue
             magnitude = pot_force(r / sigma, params) / sigma  # -dU/dr, scaled to sigma_ik
@@ -76,7 +64,7 @@ def _each_particle(pos, bodies, cell, pot_force, params, lists, force, touching)
             if inv_mass[i] == 0.0 and inv_mass[k] == 0.0:
                 continue
             sigma = radius[i] + radius[k]
-            dx, dy, dz, r = _pair_reach(pos, i, k, sigma, box, inv_box, dims)
+            dx, dy, dz, r = pair_reach(pos, i, k, sigma, box, inv_box, dims)
             if r == np.inf:
                 continue
             magnitude = pot_force(r / sigma, params) / sigma

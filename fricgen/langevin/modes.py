@@ -22,11 +22,11 @@ from __future__ import annotations
 import math
 
 import numba
+import numpy as np
 
 from ..rng import pair_key, ziggurat_normal
 from .contact_step import ROLL, SPIN, rolling_mode
-from .neighbors import separation
-from .pairs import WCA_RANGE, cross
+from .pairs import cross, pair_reach
 
 #: Per pair i < k, in the slot of (i, k): friction torque on i (0:3), noise torque impulse on i (3:6).
 MODE_FIELDS = 6
@@ -62,12 +62,10 @@ def mode_slots(coordinates, bodies, dyn, couplings, modes, lists, keys, noise_on
                 slots[slot, j] = 0.0
             if inv_mass[i] == 0.0 and inv_mass[k] == 0.0:
                 continue
-            dx, dy, dz = separation(pos, i, k, box, inv_box, dims)
-            r2 = dx * dx + dy * dy + dz * dz
             sigma = radius[i] + radius[k]
-            if r2 >= (WCA_RANGE * sigma) ** 2:
+            dx, dy, dz, r = pair_reach(pos, i, k, sigma, box, inv_box, dims)
+            if r == np.inf:
                 continue
-            r = math.sqrt(r2)
             nx, ny, nz = dx / r, dy / r, dz / r
             reff = radius[i] * radius[k] / sigma
             mu = reff * reff * (inv_inertia[i] + inv_inertia[k])

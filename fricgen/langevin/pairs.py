@@ -33,6 +33,16 @@ def cross(a0, a1, a2, b0, b1, b2):
     return a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
 
 
+@numba.njit(inline="always", cache=True)
+def pair_reach(pos, i, k, sigma, box, inv_box, dims):
+    """(dx, dy, dz, r) of the pair (i, k), r = |r_k - r_i| (minimum image), or r = inf beyond the
+    potential's range WCA_RANGE sigma (sigma = sigma_ik = R_i + R_k)."""
+    dx, dy, dz = separation(pos, i, k, box, inv_box, dims)
+    r2 = dx * dx + dy * dy + dz * dz
+    reach = WCA_RANGE * sigma
+    return dx, dy, dz, (math.sqrt(r2) if r2 < reach * reach else np.inf)
+
+
 @numba.njit(parallel=True, cache=True)
 def pair_slots(coordinates, bodies, dyn, couplings, pot_force, contact, weight, lists, switches, slots):
     """Fill the slots of every pair i < k within range; returns min r / sigma_ik.
@@ -60,14 +70,11 @@ def pair_slots(coordinates, bodies, dyn, couplings, pot_force, contact, weight, 
                 slots[slot, j] = 0.0
             if inv_mass[i] == 0.0 and inv_mass[k] == 0.0:
                 continue  # two immobile (wall) particles: no effect, and mu_ik = 0
-            dx, dy, dz = separation(pos, i, k, box, inv_box, dims)
-            r2 = dx * dx + dy * dy + dz * dz
             rk = radius[k]
             sigma = ri + rk
-            reach = WCA_RANGE * sigma
-            if r2 >= reach * reach:
+            dx, dy, dz, r = pair_reach(pos, i, k, sigma, box, inv_box, dims)
+            if r == np.inf:
                 continue
-            r = math.sqrt(r2)
             closest[i] = min(closest[i], r / sigma)
             nx, ny, nz = dx / r, dy / r, dz / r
             if conservative:
