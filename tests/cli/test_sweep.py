@@ -201,6 +201,24 @@ def test_a_rerun_runs_only_what_is_missing_and_resumes_bit_for_bit(finished, sch
     assert f"point {POINTS[0]}: run.seed: {interrupted} holds a finished run with 1, not 2" in err and err.count("\n") == 1
 
 
+def test_a_run_from_before_a_setting_existed_counts_as_finished_at_its_default(finished, tmp_path, capsys):
+    """A finished point whose config.json lacks a setting added since (law.rolling_noise) ran as its default
+    says: the sweep keeps it; the same setting recorded at another value is refused."""
+    folder, reference = finished
+    out = tmp_path / "out"
+    shutil.copytree(reference, out)
+    config = out / POINTS[0] / "config.json"
+    stored = json.loads(config.read_text())
+    del stored["law"]["rolling_noise"]
+    config.write_text(json.dumps(stored))
+    assert sweep(folder / "sweep.toml", out, "--json") == 0
+    assert json.loads(capsys.readouterr().out)["ran"] == 0
+    stored["law"]["rolling_noise"] = False
+    config.write_text(json.dumps(stored))
+    assert sweep(folder / "sweep.toml", out) == 2
+    assert f"point {POINTS[0]}: law.rolling_noise: {out / POINTS[0]} holds a finished run with False, not True" in capsys.readouterr().err
+
+
 def _child_of(out, point):
     """The process that runs ``point`` of the sweep into ``out`` (the task's child), or None."""
     for process in psutil.process_iter(["cmdline"]):

@@ -18,6 +18,7 @@ point failed (blew up), 2 a bad sweep file, 130 interrupted.
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import json
 import logging
 import os
@@ -30,6 +31,7 @@ from pathlib import Path
 from tqdm import tqdm
 
 from ...errors import ConfigError
+from ..run.config import RunConfig
 from ..run.outputs import CONFIG, check_folder, dumps
 from ..run.runner import RUN_FILES, check_run
 from .config import Point, Sweep, flatten, load_sweep
@@ -121,11 +123,26 @@ def _check_point(sweep: Sweep, point: Point, folder: Path, laws: tuple[str, ...]
     }
 
 
+def _newer_default(key: str, value) -> bool:
+    """Whether ``value`` is the default of the setting ``key`` (a dotted key of RunConfig): a run recorded
+    before that setting existed ran as its default says (new settings default to the old behaviour)."""
+    section, *path = RunConfig, *key.split(".")
+    for part in path:
+        found = {f.name: f for f in dataclasses.fields(section)}.get(part)
+        if found is None or (found.default is dataclasses.MISSING and found.default_factory is dataclasses.MISSING):
+            return False
+        section = found.default if found.default_factory is dataclasses.MISSING else found.default_factory()
+        if part != path[-1] and not dataclasses.is_dataclass(section):
+            return False
+    return json.loads(dumps(section)) == value
+
+
 def _check_finished(folder: Path, wanted: dict, what: str = "a finished run", free: tuple[str, ...] = ()) -> None:
     """A point's folder that holds a run (finished, or files of one that is not) holds a run of this
     configuration (its config.json): the files of any other run (another sweep's, a run of the
     user's) are never resumed over, restarted over or deleted. Keys in ``free`` may differ (an
-    unfinished run continues to another ``run.steps``)."""
+    unfinished run continues to another ``run.steps``), and a setting the stored run predates may be
+    at its default."""
     try:
         stored = json.loads((folder / CONFIG).read_text())
     except (OSError, ValueError):
@@ -138,7 +155,11 @@ def _check_finished(folder: Path, wanted: dict, what: str = "a finished run", fr
         )
     stored.pop("command", None)
     there, here = flatten(stored), flatten(json.loads(dumps(wanted)))
-    differing = [key for key in dict.fromkeys([*here, *there]) if here.get(key) != there.get(key) and key not in free]
+    differing = [
+        key
+        for key in dict.fromkeys([*here, *there])
+        if here.get(key) != there.get(key) and key not in free and not (key not in there and _newer_default(key, here[key]))
+    ]
     if differing:
         key = differing[0]
         raise ConfigError(
