@@ -58,8 +58,9 @@ DERIVATION_TIME_LIMIT = 600.0
 #: are the same functions of (u, w, r, mu, kT) in each; a law module of another mode than sliding
 #: states it (MODE), and the Langevin engine applies it with that mode's map C_m and mobility mu_m.
 EMITTED_MODES = ("sliding", "rolling", "spinning")
-#: The modes the LAMMPS plugin applies (its pair style has the sliding contact only).
-PLUGIN_MODES = ("sliding",)
+#: The modes the LAMMPS plugin applies: every mode, one pair style per law (a rolling or spinning law's exerts
+#: couples only; pair_style hybrid/overlay combines them, docs/guide/lammps.md).
+PLUGIN_MODES = EMITTED_MODES
 
 
 class GenerationError(DeriveError, RuntimeError):

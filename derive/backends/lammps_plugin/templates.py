@@ -215,7 +215,7 @@ void ${cls}::init_style()
   if (!comm->ghost_velocity)
     error->all(FLERR, "pair_style fricgen/${law} needs the velocities of ghost atoms: use comm_modify vel yes");
   neighbor->add_request(this);
-}
+${dimension_check}}
 
 double ${cls}::init_one(int i, int j)
 {
@@ -238,7 +238,19 @@ double ${cls}::init_one(int i, int j)
   return cut[i][j];
 }
 
-void ${cls}::compute(int eflag, int vflag)
+${compute}""")
+
+#: The pairs of atom i's neighbour list within reach, r = |x_j - x_i| (both pair styles' compute()).
+PAIR_LOOP = """    for (int jj = 0; jj < numneigh[i]; jj++) {
+      const int j = jlist[jj] & NEIGHMASK, jtype = type[j];
+      const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
+      const double rsq = dx * dx + dy * dy + dz * dz;
+      if (rsq >= cutsq[itype][jtype]) continue;
+      const double r = std::sqrt(rsq);
+"""
+
+#: compute() of the sliding pair style: WCA, the friction (f/u) u_perp with its torques, the noise (module docstring).
+SLIDING_COMPUTE = Template(r"""void ${cls}::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
   double **x = atom->x, **v = atom->v, **f = atom->f, **omega = atom->omega, **torque = atom->torque;
@@ -256,13 +268,7 @@ void ${cls}::compute(int eflag, int vflag)
     const int i = ilist[ii], itype = type[i];
     const double ri = radius[i];
     const int *jlist = firstneigh[i];
-    for (int jj = 0; jj < numneigh[i]; jj++) {
-      const int j = jlist[jj] & NEIGHMASK, jtype = type[j];
-      const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
-      const double rsq = dx * dx + dy * dy + dz * dz;
-      if (rsq >= cutsq[itype][jtype]) continue;
-      const double r = std::sqrt(rsq);
-      const double nx = dx / r, ny = dy / r, nz = dz / r;
+${pair_loop}      const double nx = dx / r, ny = dy / r, nz = dz / r;
       const double pot[2] = {epsilon[itype][jtype], sigma[itype][jtype]};
       const double magnitude = pair_force(r, pot);    // -dU/dr
       double fx = -magnitude * nx, fy = -magnitude * ny, fz = -magnitude * nz;    // on i
@@ -353,7 +359,7 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.version = static_cast<LAMMPS *>(lmp)->version;    // the running LAMMPS: no version.h needed
   plugin.style = "pair";
   plugin.name = "fricgen/${law}";
-  plugin.info = "fricgen: WCA + friction law ${law} with its frictional noise (${calculus} calculus)";
+  plugin.info = "${info}";
   plugin.author = "fricgen code generator";
   plugin.creator.v1 = (lammpsplugin_factory1 *) &creator;
   plugin.handle = handle;

@@ -126,7 +126,7 @@ def plugin_folder(law: str) -> Path:
 
 def plugin_texts(name: str, calculus: str = "ito") -> dict[str, str]:
     """Derive and verify ``name`` in ``calculus`` and print its plugin's files (LammpsCalculusError,
-    a DeriveError, for a calculus the pair style cannot integrate)."""
+    a DeriveError, for a calculus the pair style cannot integrate), on any contact mode."""
     from fricgen.derive.backends.lammps_plugin.module import check_calculus, plugin_files
     from fricgen.derive.driver import PLUGIN_MODES, verified_models
     from fricgen.derive.law.catalogues import find_law, is_built_in
@@ -137,7 +137,15 @@ def plugin_texts(name: str, calculus: str = "ito") -> dict[str, str]:
     check_calculus(law, calculus)
     models, _ = verified_models(dataclasses.replace(law, calculi=(calculus,)), emitted=PLUGIN_MODES, backend="LAMMPS plugin")
     source = f"derive/law/catalogue/{name}.toml" if is_built_in(path.parent) else f"{path.parent.name}/{name}.toml"
-    return plugin_files(law, models[calculus], law.source_hash, source)
+    return plugin_files(law, models[calculus], law.source_hash, source, ziggurat())
+
+
+def ziggurat() -> tuple[tuple, float]:
+    """The tables and tail start of fricgen.rng's ziggurat, whose normals a rolling or spinning law's pair
+    style draws as the engine does (fricgen.derive never imports the runtime: they are handed to it)."""
+    from fricgen import rng
+
+    return (rng._ZIG_W, rng._ZIG_K, rng._ZIG_F), rng._ZIG_R
 
 
 def plugin_sources(law: str) -> tuple[str, ...]:
