@@ -52,15 +52,18 @@ def vectors(snapshot: dict[str, np.ndarray], *names: str) -> np.ndarray:
     return np.stack([snapshot[n] for n in names], axis=1)
 
 
-def data_file(path: Path, box: float, dim: int, position, velocity, omega, diameter: float = 1.0) -> None:
-    """A read_data file of spheres of one type: positions, velocities and angular velocities, exact (repr)."""
+def data_file(path: Path, box: float, dim: int, position, velocity, omega, diameter=1.0, types=None) -> None:
+    """A read_data file of spheres: positions, velocities and angular velocities, exact (repr); one type and
+    ``diameter`` for all, or per atom ``types`` (1, 2, ...) and ``diameter`` (an array)."""
     n = len(position)
+    types = np.ones(n, dtype=int) if types is None else np.asarray(types)
+    diameter = np.broadcast_to(np.asarray(diameter, dtype=float), (n,))
     z = "-0.5 0.5" if dim == 2 else f"0.0 {box!r}"
     lines = [
         f"fricgen test: {n} spheres",
         "",
         f"{n} atoms",
-        "1 atom types",
+        f"{types.max()} atom types",
         "",
         f"0.0 {box!r} xlo xhi",
         f"0.0 {box!r} ylo yhi",
@@ -68,7 +71,7 @@ def data_file(path: Path, box: float, dim: int, position, velocity, omega, diame
         "",
     ]
     lines += ["Atoms # sphere", ""]
-    lines += [f"{i + 1} 1 {diameter!r} 1.0 {' '.join(repr(float(c)) for c in position[i])}" for i in range(n)]
+    lines += [f"{i + 1} {types[i]} {float(diameter[i])!r} 1.0 {' '.join(repr(float(c)) for c in position[i])}" for i in range(n)]
     lines += ["", "Velocities", ""]
     lines += [f"{i + 1} {' '.join(repr(float(c)) for c in (*velocity[i], *omega[i]))}" for i in range(n)]
     path.write_text("\n".join(lines) + "\n")
