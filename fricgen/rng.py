@@ -29,7 +29,7 @@ _TWO_53 = 1.0 / 9007199254740992.0
 #: keep reproducing earlier runs bit for bit.
 SOLVENT = 1  # Langevin: Ornstein–Uhlenbeck solvent kicks, per particle
 CONTACT = 2  # Langevin: frictional contact noise, per pair
-INITIAL = 3  # initial velocities, spins and orientations; rods: shifts of the evenly spaced start
+INITIAL = 3  # initial velocities, spins and orientations; rods: the free-rod start (fricgen.rods.mc.free_rods)
 WALL_ROUGHNESS = 4  # Langevin: Gaussian heights of rough slab walls
 BCD = 4  # rods: Brownian trial forces, per replica and rod
 MONTE_CARLO = 5  # rods: Metropolis proposals and acceptances of the equilibrium start

@@ -50,8 +50,9 @@ def deviations(measured: RodProfiles, exact: RodProfile, contact: bool = True) -
 
     Returns:
         ``max_abs_dev`` (``max |Δρ|``, in 1/λ), ``l1_dev_over_rho`` (``mean |Δρ| / ρ̄``), ``chi2_per_dof`` (χ²
-        per bin); with ``contact``: ``contact_chi2_per_dof``, ``contact_ratio`` (measured / exact) and
-        ``contact_ratio_err``, None where too few pairs were measured.
+        per bin); with ``contact``: ``contact_chi2_per_dof``, ``contact_ratio`` (measured / exact, summed
+        over the bins) and ``contact_ratio_err`` (from ``measured.contact_cov`` where known: the bins of
+        a ring are correlated), None where too few pairs were measured.
     """
     bins = measured.x.size
     rho = exact.bin_means(bins)
@@ -66,10 +67,14 @@ def deviations(measured: RodProfiles, exact: RodProfile, contact: bool = True) -
         figures = (None, None, None)  # too few pairs beyond the BCD layer to measure
         if where.sum() >= 2:
             total = expected[where].sum()
+            if measured.contact_cov is None:  # bins taken as independent
+                variance = np.sum(measured.contact_err[where] ** 2)
+            else:  # the bins of one ring are correlated: their sum's variance is the covariance's sum
+                variance = measured.contact_cov[np.ix_(where, where)].sum()
             figures = (
                 float(np.mean(((measured.contact - expected) / measured.contact_err)[where] ** 2)),
                 float(measured.contact[where].sum() / total),
-                float(np.sqrt(np.sum(measured.contact_err[where] ** 2)) / total),
+                float(np.sqrt(variance) / total),
             )
         result.update(zip(("contact_chi2_per_dof", "contact_ratio", "contact_ratio_err"), figures))
     return result

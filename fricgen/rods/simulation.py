@@ -31,7 +31,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ConfigError, SimulationError
-from ..rng import INITIAL, normals
 from . import bcd, mc
 from .config import CONTACT_LAYERS, RodConfig
 from .interactions import field_kernels, pair_kernels, stability_ratio
@@ -45,7 +44,8 @@ CHUNK_STEPS = 20_000
 
 @dataclass(frozen=True)
 class RodProfiles:
-    """Profiles over one wavelength at bin centres x: rho, rho_2 at contact, their standard errors."""
+    """Profiles over one wavelength at bin centres x: rho, rho_2 at contact, their standard errors, and the
+    covariance of the contact estimates between bins (from the replicas; None: not known)."""
 
     x: np.ndarray
     rho: np.ndarray
@@ -53,12 +53,13 @@ class RodProfiles:
     contact: np.ndarray
     contact_err: np.ndarray
     steps: int
+    contact_cov: np.ndarray | None = None
 
 
 class RodSimulation:
     """Independent replicas of one ring, started from equilibrium (Monte Carlo) and evolved by BCD.
 
-    ``positions`` (N or replicas x N, ordered, no overlaps): the start instead of evenly spaced rods,
+    ``positions`` (N or replicas x N, ordered, no overlaps): the start instead of free hard rods in equilibrium,
     before the config's Monte Carlo sweeps; required on an open line (length = inf), which has no
     Monte Carlo start and no profiles."""
 
@@ -79,12 +80,10 @@ class RodSimulation:
         self.acceptance = self.thermalize(config.numerics.start_sweeps)
 
     def _initial(self) -> np.ndarray:
-        """Evenly spaced rods with a small random shift per replica (no overlaps)."""
-        m, replicas = self.config.model, self.config.sampling.replicas
-        spacing = m.length / m.n
-        shift = normals(self.config.numerics.seed, 0, INITIAL, replicas) * 0.1 * (spacing - m.sigma)
-        base = np.arange(m.n) * spacing
-        return np.ascontiguousarray(base[None, :] + shift[:, None] % spacing)
+        """Free hard rods in equilibrium on the ring (fricgen.rods.mc.free_rods: the long-wavelength density
+        fluctuations that the Monte Carlo sweeps cannot build from a lattice)."""
+        m = self.config.model
+        return mc.free_rods(m.n, m.length, m.sigma, self.config.sampling.replicas, self.config.numerics.seed)
 
     def _given(self, positions: np.ndarray) -> np.ndarray:
         """A copy of the given start for every replica; ConfigError unless ordered without overlaps."""
@@ -143,26 +142,31 @@ class RodSimulation:
         rods, gaps = np.zeros((c.replicas, c.bins)), np.zeros((c.replicas, c.bins, c.gap_bins))
         self.advance(steps, (rods, gaps))
         rho = rods / scale
-        contact, contact_err = self._contact(gaps / (scale * c.gap_width))
+        contact, covariance = self._contact(gaps / (scale * c.gap_width))
         return RodProfiles(
             (np.arange(c.bins) + 0.5) * width,
             rho.mean(0),
             rho.std(0, ddof=1) / math.sqrt(c.replicas),
             contact,
-            contact_err,
+            np.sqrt(np.diagonal(covariance)),
             steps,
+            covariance,
         )
 
     def _contact(self, pair_density: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """rho_2 at contact per bin from the gap histograms of the replicas (replicas, bins, gap bins).
+        """rho_2 at contact per bin from the gap histograms of the replicas (replicas, bins, gap bins), and
+        the covariance of these estimates between bins (bins x bins).
 
-        Beyond the BCD layer, g >= g0, the mean pair densities A and B over two windows
+        bridge: the local time in gap bin 0, covariance from the scatter between replicas. merge and
+        reflect: beyond the BCD layer, g >= g0, the mean pair densities A and B over two windows
         [g0, g0 + d) and [g0 + d, g0 + 2d) fix rho_2(g) = rho_2(0) exp(-k g): k = ln(A / B) / d,
-        rho_2(0) = A exp(k g0) (k d) / (1 - exp(-k d)). Errors by jackknife over the replicas."""
+        rho_2(0) = A exp(k g0) (k d) / (1 - exp(-k d)); covariance by jackknife over the replicas. The
+        bins of one ring are correlated (its long-wavelength density fluctuations and the occupation of
+        its wells change all of them), so a sum over bins needs the covariance, not the errors alone."""
         c = self.config.sampling
         if self.config.numerics.contact_layer == "bridge":  # gap bin 0 holds the local time at contact
             local = pair_density[:, :, 0]
-            return local.mean(0), local.std(0, ddof=1) / math.sqrt(local.shape[0])
+            return local.mean(0), np.atleast_2d(np.cov(local, rowvar=False)) / local.shape[0]
         half = c.fit_bins // 2
         first = self.config.contact_fit_bins() - 2 * half  # RodConfig checked that gap_bins suffice
         start, span = (first - 1) * c.gap_width, half * c.gap_width
@@ -177,14 +181,13 @@ class RodSimulation:
         samples = windows.shape[0]
         total = windows.sum(0)
         leave_one_out = extrapolate(*np.moveaxis((total[None] - windows) / (samples - 1), -1, 0))
-        with np.errstate(invalid="ignore"):  # bins without pairs in a window stay NaN
-            error = np.sqrt((samples - 1) * leave_one_out.var(0))
-        return extrapolate(*np.moveaxis(total / samples, -1, 0)), error
+        deviation = leave_one_out - leave_one_out.mean(0)  # bins without pairs in a window stay NaN
+        return extrapolate(*np.moveaxis(total / samples, -1, 0)), (samples - 1) / samples * deviation.T @ deviation
 
 
 def extrapolate_to_zero_dt(coarse: RodProfiles, fine: RodProfiles, ratio: float, order: float = 0.5) -> RodProfiles:
     """Remove a bias of O(dt^order) from runs at dt and dt / ratio: X(0) = (r X_fine - X_coarse) / (r - 1),
-    r = ratio^order (Richardson; errors added in quadrature). order = RodNumerics.error_order: 1/2 for BCD's
+    r = ratio^order (Richardson; errors and covariances of the independent runs added). order = RodNumerics.error_order: 1/2 for BCD's
     merge layer, 1 for bridge and reflect."""
     r = ratio**order
 
@@ -194,6 +197,7 @@ def extrapolate_to_zero_dt(coarse: RodProfiles, fine: RodProfiles, ratio: float,
     def error(a, b):
         return np.hypot(r * b, a) / (r - 1)
 
+    known = coarse.contact_cov is not None and fine.contact_cov is not None
     return RodProfiles(
         fine.x,
         combine(coarse.rho, fine.rho),
@@ -201,4 +205,5 @@ def extrapolate_to_zero_dt(coarse: RodProfiles, fine: RodProfiles, ratio: float,
         combine(coarse.contact, fine.contact),
         error(coarse.contact_err, fine.contact_err),
         coarse.steps + fine.steps,
+        (r**2 * fine.contact_cov + coarse.contact_cov) / (r - 1) ** 2 if known else None,
     )

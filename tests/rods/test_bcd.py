@@ -1,12 +1,14 @@
 """Brownian cluster dynamics: the cluster rule, hard-core invariants, reproducibility, and profiles
 against the exact theory (hard rods dilute and dense, sticky rods)."""
 
+import dataclasses
 import math
 
 import numpy as np
 import pytest
 
 from fricgen.rods import (
+    RodProfiles,
     RodSimulation,
     bcd,
     best_exponent,
@@ -146,6 +148,28 @@ def test_open_line_hard_rods_are_sorted_free_brownian_motions():
         rod_config(length=math.inf)
     with pytest.raises(ValueError, match="at least sigma"):
         RodSimulation(config, positions=[0.0, 0.4, 1.0])
+
+
+@pytest.mark.parametrize("layer", ["bridge", "merge"])
+def test_pooled_contact_error_counts_the_correlation_of_a_rings_bins(layer):
+    """16 rings whose contact density is the exact one times (1 + 0.01 z_r) in every bin (a ring-wide fluctuation,
+    as from its long-wavelength density modes): the pooled ratio's error is the scatter of the rings' pooled
+    ratios, 0.01 std(z) / 4, for the local time (bridge) and the jackknife of the fit (merge). Adding the bins'
+    errors in quadrature, as if they were independent, gave it about 4 times too small."""
+    config = rod_config(n=140, length=100.0, sigma=0.5, dt=1e-4, replicas=16, bins=25, start_sweeps=0, contact_layer=layer)
+    exact, c = exact_profile(config), config.sampling
+    expected = exact.bin_means(c.bins, "contact")
+    factor = 1 + 0.01 * np.random.default_rng(5).standard_normal(c.replicas)
+    decay = np.exp(-4.0 * (np.arange(c.gap_bins) - 0.5).clip(0) * c.gap_width)  # rho_2(x, sigma + g) / rho_2(x, sigma+)
+    density = factor[:, None, None] * expected[None, :, None] * decay[None, None, :]
+    contact, covariance = RodSimulation(config)._contact(density)
+    x, error = (np.arange(c.bins) + 0.5) / c.bins, np.sqrt(np.diagonal(covariance))
+    measured = RodProfiles(x, np.zeros(c.bins), np.ones(c.bins), contact, error, 1, covariance)
+    figures = deviations(measured, exact)
+    assert figures["contact_ratio_err"] == pytest.approx(factor.std(ddof=1) / 4, rel=1e-3), figures
+    assert figures["contact_ratio"] == pytest.approx(factor.mean(), rel=1e-4), figures  # merge: the fit of exp(-k g) per bin
+    independent = deviations(dataclasses.replace(measured, contact_cov=None), exact)  # the bins' errors in quadrature
+    assert independent["contact_ratio_err"] < 0.4 * figures["contact_ratio_err"], independent
 
 
 def test_dense_profile_and_contact_density_after_extrapolation_in_sqrt_dt():
