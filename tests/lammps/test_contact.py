@@ -68,7 +68,7 @@ def engine_forces(law: str, dim: int, noise: bool, coordinates):
     slots = np.zeros((lists[1].size, PAIR_FIELDS))
     bodies = Bodies(particles.radius, particles.inv_mass, particles.inv_inertia)
     weight = simulation.kernels.module.weight
-    switches = (stream_key(SEED, 0, CONTACT), True, noise, True)
+    switches = (np.uint64(stream_key(SEED, 0, CONTACT)), True, noise, True)  # a uint64 as in the engine (an int below 2^63 types as int64)
     kernels = (simulation.potential.force, simulation.contact, weight)
     pair_slots((state.position, state.velocity, state.omega), bodies, dyn, simulation.couplings, *kernels, lists, switches, slots)
     terms = np.zeros((TERMS, n, 3))

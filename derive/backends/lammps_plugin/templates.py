@@ -1,4 +1,5 @@
-"""The C++ text of the LAMMPS pair style ``fricgen/<law>``: its class declaration and its methods.
+"""The C++ text of the LAMMPS pair style ``fricgen/<law>``: its class declaration and its methods
+(compute() of a rolling or spinning law's style: fricgen.derive.backends.lammps_plugin.mode_code).
 
 The physics is fricgen's engine, formula for formula (fricgen/langevin/pairs.py,
 docs/physics.md#one-tangential-random-force and #the-two-dimensional-reduction): per pair i, j
