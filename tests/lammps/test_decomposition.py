@@ -1,5 +1,6 @@
 """The plugin's noise does not depend on the domain decomposition: 1 and 2 MPI ranks, newton_pair on
-and off, give the same trajectory to round-off over the first steps.
+and off, give the same trajectory to round-off over the first steps, Coulomb–Newton alone and overlaid
+with a rolling law.
 
 The contact noise is keyed on (seed, step, atom IDs), never on a rank's random stream, so the only
 difference between decompositions is the order in which each atom's pair forces are summed. The
@@ -32,11 +33,20 @@ def lattice(dim: int):
     return cells * spacing, position, velocity - velocity.mean(axis=0), omega
 
 
-def script(plugin, dim: int, newton: str) -> str:
+def script(plugin, dim: int, newton: str, rolling=None) -> str:
+    """Coulomb–Newton, overlaid with rolling Coulomb–Newton (the plugin ``rolling``) if given."""
+    if rolling is None:
+        pair = f"plugin load {plugin}\npair_style fricgen/coulomb_newton 1.0 99\npair_coeff * * 1.0 1.0 gamma_f 6.0 kappa_f 5.0\n"
+    else:
+        pair = (
+            f"plugin load {plugin}\nplugin load {rolling}\n"
+            "pair_style hybrid/overlay fricgen/coulomb_newton 1.0 99 fricgen/rolling_coulomb_newton 1.0 99\n"
+            "pair_coeff * * fricgen/coulomb_newton 1.0 1.0 gamma_f 6.0 kappa_f 5.0\n"
+            "pair_coeff * * fricgen/rolling_coulomb_newton 1.0 1.0 gamma_r 6.0 kappa_r 5.0\n"
+        )
     return (
         f"units lj\ndimension {dim}\natom_style sphere\nboundary p p p\nnewton {newton}\nread_data data.lattice\n"
-        f"set type 1 mass 1.0\nplugin load {plugin}\npair_style fricgen/coulomb_newton 1.0 99\n"
-        "pair_coeff * * 1.0 1.0 gamma_f 6.0 kappa_f 5.0\n"
+        f"set type 1 mass 1.0\n{pair}"
         "comm_modify vel yes\nneighbor 0.3 bin\nneigh_modify every 1 delay 0 check yes\nfix 1 all nve/sphere\n"
         + ("fix 2 all enforce2d\n" if dim == 2 else "")
         + "timestep 0.002\n"
@@ -45,15 +55,18 @@ def script(plugin, dim: int, newton: str) -> str:
     )
 
 
+@pytest.mark.parametrize("rolling", [False, True], ids=["sliding", "sliding+rolling"])
 @pytest.mark.parametrize("dim", [2, 3])
-def test_one_and_two_ranks_and_newton_off_agree(lammps, plugin, tmp_path, dim):
+def test_one_and_two_ranks_and_newton_off_agree(lammps, plugin, tmp_path, dim, rolling):
+    """(With a rolling law overlaid too: its couples and its noise, keyed on the atom IDs as well.)"""
     box, *state = lattice(dim)
     runs = {}
+    extra = plugin("rolling_coulomb_newton") if rolling else None
     for ranks, newton in ((1, "on"), (2, "on"), (2, "off")):
         folder = tmp_path / f"{ranks}-{newton}"
         folder.mkdir()
         data_file(folder / "data.lattice", box, dim, *state)
-        output = run(lammps, folder, script(plugin("coulomb_newton"), dim, newton), ranks=ranks)
+        output = run(lammps, folder, script(plugin("coulomb_newton"), dim, newton, extra), ranks=ranks)
         assert f"on {ranks} procs" in output
         runs[ranks, newton] = read_dump(folder / "dump.trajectory")
     reference = runs[1, "on"]
