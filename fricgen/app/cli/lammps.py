@@ -356,8 +356,9 @@ def run_lammps(args: argparse.Namespace) -> int:
         return 0
     plugin = build_plugin(folder, lammps, args.build_dir)
     print(f"built     {plugin}")
+    template = next(p for p in (folder / f"in.{args.law}_{d}d" for d in (2, 3)) if p.is_file())  # a spinning law: 3-D only
     print(
         f"run:      LD_LIBRARY_PATH={lammps.prefix / 'lib'} {lammps.prefix / 'bin' / 'mpirun'} -np 2 {lammps.lmp} "
-        f"-in {folder / f'in.{args.law}_2d'} -var plugin {plugin}"
+        f"-in {template} -var plugin {plugin}"
     )
     return 0
