@@ -127,6 +127,8 @@ def _ziggurat_tables(layers=256, r=_ZIG_R):
 
 
 _ZIG_W, _ZIG_K, _ZIG_F = _ziggurat_tables()
+#: ((w, k, f), r): the tables and the tail start of ziggurat_normal, for its ports (the LAMMPS plugin's C++).
+ZIGGURAT = ((_ZIG_W, _ZIG_K, _ZIG_F), _ZIG_R)
 _LAYER, _SIGN = np.uint64(255), np.uint64(256)
 
 

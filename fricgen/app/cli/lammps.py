@@ -145,7 +145,7 @@ def ziggurat() -> tuple[tuple, float]:
     style draws as the engine does (fricgen.derive never imports the runtime: they are handed to it)."""
     from fricgen import rng
 
-    return (rng._ZIG_W, rng._ZIG_K, rng._ZIG_F), rng._ZIG_R
+    return rng.ZIGGURAT
 
 
 def plugin_sources(law: str) -> tuple[str, ...]:
