@@ -26,6 +26,13 @@ def exact_profile(config: RodConfig) -> RodProfile:
         ConfigError: for an open line, or a σ/λ that is no fraction k/m with 600 ≤ m ≤ 2400.
     """
     c = config.model
+    return rod_profile(field_energy(c), c.sigma, c.mean_density, c.wavelength, c.kT, *_theory(config), ring_length=c.length)
+
+
+def _theory(config: RodConfig) -> tuple[Neighbours, int]:
+    """The neighbours and the grid (points per wavelength, sigma on a point) of the exact theory; ConfigError as
+    in :func:`exact_profile`."""
+    c = config.model
     if c.open_line:
         raise ConfigError("model.length", "the exact theory is for a ring of finite length, not an open line", "give a finite length")
     ratio = c.sigma / c.wavelength
@@ -36,7 +43,21 @@ def exact_profile(config: RodConfig) -> RodProfile:
     if c.pair is not None:
         module, params, reach = pair_kernels(c)
         neighbours = Neighbours(pair=on_arrays(module.energy, params), pair_range=reach)
-    return rod_profile(field_energy(c), c.sigma, c.mean_density, c.wavelength, c.kT, neighbours, points, ring_length=c.length)
+    return neighbours, points
+
+
+def compressibility(config: RodConfig) -> float:
+    """chi = d rho_bar / d(beta mu_ch) of the infinite line (1 / lambda), by a central difference of the exact
+    theory at rho_bar (1 +- 1e-3): the mean of |sum_j exp(i k x_j)|^2 / L for 2 pi / L <= k << 2 pi / lambda.
+    ConfigError as in :func:`exact_profile`."""
+    c = config.model
+    neighbours, points = _theory(config)
+    step = 1e-3 * c.mean_density
+    below, above = (
+        rod_profile(field_energy(c), c.sigma, c.mean_density + sign * step, c.wavelength, c.kT, neighbours, points).beta_mu
+        for sign in (-1, 1)
+    )
+    return 2 * step / (above - below)
 
 
 def deviations(measured: RodProfiles, exact: RodProfile, contact: bool = True) -> dict[str, float | None]:

@@ -8,14 +8,15 @@ of its free interval (x_{i-1} + sigma, x_{i+1} - sigma): a symmetric proposal ac
 probability min(1, exp(-beta Delta E)). Random numbers are counter-based (seed, sweep, replica, rod),
 so a sweep count and seed give a bit-identical start.
 
-The sweeps start from the exact equilibrium of free hard rods on the ring (``free_rods``), not from a
-lattice. The ring's long-wavelength density modes, with |sum_j exp(2 pi i m x_j / L)|^2 of mean L chi
-in equilibrium (chi = d rho_bar / d beta mu_ch; m << L / lambda), relax in these sweeps only
-diffusively, in about 13 000 sweeps for m = 1 (N = 140, L = 100, U0 = 6, rho_bar sigma = 0.7), and
-never within a BCD run. A lattice has none of these fluctuations: after 2000 sweeps modes 1 and 2 held
-0.27 and 0.68 of their equilibrium, and the contact density of that dense ring stayed 0.35 % below the
-exact canonical one in BCD at every dt (docs/physics-bcd-contact-layer.md). Free hard rods have
-chi_0 = rho_bar (1 - rho_bar sigma)^2, within 0.5 % of the field's chi there.
+The sweeps start from rods with Gamma-distributed gaps (``free_rods``), not from a lattice. The ring's
+long-wavelength density modes, with |sum_j exp(2 pi i m x_j / L)|^2 of mean L chi in equilibrium
+(chi = d rho_bar / d beta mu_ch; m << L / lambda), relax in these sweeps only diffusively, in about
+13 000 sweeps for m = 1 (N = 140, L = 100, U0 = 6, rho_bar sigma = 0.7), and never within a BCD run. A
+lattice has none of these fluctuations: after 2000 sweeps modes 1 and 2 held 0.27 and 0.68 of their
+equilibrium, and the contact density of that dense ring stayed 0.35 % below the exact canonical one in
+BCD at every dt (docs/physics-bcd-contact-layer.md). Gaps of shape k give chi_0 / k, chi_0 =
+rho_bar (1 - rho_bar sigma)^2 that of free hard rods (k = 1); RodSimulation sets k = chi_0 / chi from the
+exact theory (1.005 in that ring; 4.3 at rho_bar sigma = 0.5, one rod per well).
 """
 
 from __future__ import annotations
@@ -27,7 +28,7 @@ import numpy as np
 from numba import types
 
 from ..kernels import SCALAR_KERNEL
-from ..rng import INITIAL, MONTE_CARLO, fold_key, stream_key, uniform
+from ..rng import INITIAL, MONTE_CARLO, fold_key, stream_key, uniform, ziggurat_normal
 from .records import RING
 
 _F, _I = types.float64, types.int64
@@ -37,17 +38,39 @@ _FREE_START = 1  # the step of the INITIAL stream that draws the free-rod start
 
 
 @numba.njit(cache=True)
-def free_rods(n, length, sigma, replicas, seed):
-    """Positions (replicas x n, ordered, unwrapped) of n free hard rods on a ring of length L, exact
-    equilibrium: the gaps g_i = (L - n sigma) E_i / sum E (E_i standard exponential, a flat Dirichlet law)
-    after rod 0 at a uniform point of [0, L); x_{i+1} = x_i + sigma + g_i."""
+def _gamma(shape, key):
+    """A Gamma(shape) variate from the counter-based stream ``key`` (Marsaglia and Tsang 2000; for
+    shape < 1, Gamma(shape + 1) U^(1 / shape))."""
+    boost = shape < 1.0
+    a = shape + 1.0 if boost else shape
+    d = a - 1.0 / 3.0
+    c = 1.0 / math.sqrt(9.0 * d)
+    j = 0
+    while True:
+        x = ziggurat_normal(key, j)
+        v = (1.0 + c * x) ** 3
+        u = uniform(key, j + 1)
+        j += 2
+        if v > 0.0 and math.log1p(-u) < 0.5 * x * x + d - d * v + d * math.log(v):
+            value = d * v
+            break
+    return value * (1.0 - uniform(key, j)) ** (1.0 / shape) if boost else value
+
+
+@numba.njit(cache=True)
+def free_rods(n, length, sigma, replicas, seed, shape=1.0):
+    """Positions (replicas x n, ordered, unwrapped) of n rods on a ring of length L with the gaps
+    g_i = (L - n sigma) G_i / sum G, G_i ~ Gamma(shape), after rod 0 at a uniform point of [0, L);
+    x_{i+1} = x_i + sigma + g_i. For shape = 1 (a flat Dirichlet law) the exact equilibrium of free hard
+    rods; their long density waves have chi_0 / shape, chi_0 = rho_bar (1 - rho_bar sigma)^2 (a renewal
+    process: S(0) = Var(spacing) / <spacing>^2)."""
     out = np.empty((replicas, n))
     free = length - n * sigma
     gaps = np.empty(n)
     for r in range(replicas):
         key = fold_key(stream_key(seed, _FREE_START, INITIAL), r)
         for i in range(n):
-            gaps[i] = -math.log1p(-uniform(key, i + 1))
+            gaps[i] = -math.log1p(-uniform(key, i + 1)) if shape == 1.0 else _gamma(shape, fold_key(key, i + 1))
         scale = free / gaps.sum()
         out[r, 0] = length * uniform(key, 0)
         for i in range(1, n):

@@ -80,10 +80,17 @@ class RodSimulation:
         self.acceptance = self.thermalize(config.numerics.start_sweeps)
 
     def _initial(self) -> np.ndarray:
-        """Free hard rods in equilibrium on the ring (fricgen.rods.mc.free_rods: the long-wavelength density
-        fluctuations that the Monte Carlo sweeps cannot build from a lattice)."""
+        """Rods with Gamma-distributed gaps (fricgen.rods.mc.free_rods) whose long density waves have the exact
+        theory's chi, shape = chi_0 / chi: the fluctuations that the Monte Carlo sweeps relax only over ~1e4
+        sweeps (free hard rods, shape 1, where the theory cannot be solved: a sigma / lambda off its grids)."""
+        from .comparison import compressibility  # it imports this module
+
         m = self.config.model
-        return mc.free_rods(m.n, m.length, m.sigma, self.config.sampling.replicas, self.config.numerics.seed)
+        try:
+            shape = m.mean_density * (1 - m.mean_density * m.sigma) ** 2 / compressibility(self.config)
+        except ConfigError:
+            shape = 1.0
+        return mc.free_rods(m.n, m.length, m.sigma, self.config.sampling.replicas, self.config.numerics.seed, shape)
 
     def _given(self, positions: np.ndarray) -> np.ndarray:
         """A copy of the given start for every replica; ConfigError unless ordered without overlaps."""
