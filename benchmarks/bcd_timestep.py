@@ -1,16 +1,21 @@
 """How large may the BCD time step be, per contact layer? (issues 5 and 30)
 
-Rods in U = (U0/2) cos(2 pi x), U0 = 6, lambda = 1, sigma = 0.5, L = 100; 16 replicas started from Monte
-Carlo equilibrium, 0.25 time units at dt, then sampled. Cases: hard rods at rho_bar sigma = 0.2, 0.5, 0.7
+Rods in U = (U0/2) cos(2 pi x), U0 = 6, lambda = 1, sigma = 0.5, L = 100; 16 replicas (--replicas) started
+from Monte Carlo equilibrium, 0.25 time units at dt, then sampled; the k-th step of --steps uses seed 11 + k
+(--seed), so that the runs at different dt are independent (the slow modes of one start, the wells'
+occupation and the ring's long density waves, would otherwise be shared by every dt). Cases: hard rods at rho_bar sigma = 0.2, 0.5, 0.7
 (T = 1.25 sampled), and sticky rods gamma = 1, p = 3, eps = 0.05 at rho_bar sigma = 0.25 (T = 3). Per
 layer and dt: L1 / rho_bar and chi^2 per bin of the profile, the contact density ratio (hard rods) with
 its chi^2 per bin, and the well contrast c - 1 with its error: c is the profile's projection on the exact
 one's deviation from rho_bar, sum (rho - rho_bar)(rho_ex - rho_bar) / sum (rho_ex - rho_bar)^2, one value
 per replica (1 when exact; below 1 for rods that look shorter or, sticky, over-bound across barriers).
 Then the fitted order q of |bias| = C dt^q, for the bias c - 1 and (hard rods) the contact ratio - 1,
-over the steps where the bias exceeds 3 of its errors.
+over the steps where the bias exceeds 3 of its errors, and of c - 1 = C dt^q over every step (weighted
+least squares). The contact ratio's error is that of the sum over bins, from their covariance between
+replicas (RodProfiles.contact_cov).
 
 Run: nice -n 10 python benchmarks/bcd_timestep.py [--layers merge,bridge] [--steps 1e-3,...] [--cases 0.2,0.5,0.7,sticky] [--time T]
+[--replicas R] [--seed S]
 (the full table: minutes per layer and case on two cores; dt = 1e-6 dominates).
 """
 
@@ -21,6 +26,7 @@ import math
 import time
 
 import numpy as np
+from scipy.optimize import curve_fit
 
 from fricgen.rods import RodSimulation, deviations, exact_profile, rod_config
 from fricgen.rods.simulation import RodProfiles
@@ -29,16 +35,16 @@ STEPS = (1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6, 1e-6)
 STICKY = {"gamma": 1.0, "p": 3.0, "eps": 0.05}
 
 
-def case_config(case: str, dt: float, layer: str):
+def case_config(case: str, dt: float, layer: str, replicas: int = 16, seed: int = 11):
     """The configuration of a case ("0.2", "0.5", "0.7": hard rods at that rho_bar sigma; "sticky")."""
     model = {"n": 50, **STICKY} if case == "sticky" else {"n": round(float(case) * 200)}
-    config = rod_config(**model, length=100.0, sigma=0.5, dt=dt, replicas=16, bins=25, seed=11, contact_layer=layer, gap_bins=40)
+    config = rod_config(**model, length=100.0, sigma=0.5, dt=dt, replicas=replicas, bins=25, seed=seed, contact_layer=layer, gap_bins=40)
     return config.replace(gap_bins=max(40, config.contact_fit_bins()))
 
 
-def measure(case: str, dt: float, layer: str, duration: float) -> dict:
+def measure(case: str, dt: float, layer: str, duration: float, replicas: int = 16, seed: int = 11) -> dict:
     """One run: the deviations from the exact profile and the well contrast (mean and error over replicas)."""
-    config = case_config(case, dt, layer)
+    config = case_config(case, dt, layer, replicas, seed)
     simulation = RodSimulation(config)
     simulation.equilibrate(0.25)
     c, steps = config.sampling, round(duration / dt)
@@ -48,10 +54,9 @@ def measure(case: str, dt: float, layer: str, duration: float) -> dict:
     seconds = time.perf_counter() - start
     scale = steps * config.model.length / c.bins  # sampled length per bin (lambda = 1)
     rho = rods / scale
-    contact, contact_err = simulation._contact(gaps / (scale * c.gap_width))
-    profiles = RodProfiles(
-        (np.arange(c.bins) + 0.5) / c.bins, rho.mean(0), rho.std(0, ddof=1) / math.sqrt(c.replicas), contact, contact_err, steps
-    )
+    contact, covariance = simulation._contact(gaps / (scale * c.gap_width))
+    x, rho_err = (np.arange(c.bins) + 0.5) / c.bins, rho.std(0, ddof=1) / math.sqrt(c.replicas)
+    profiles = RodProfiles(x, rho.mean(0), rho_err, contact, np.sqrt(np.diagonal(covariance)), steps, covariance)
     exact = exact_profile(config)
     figures = deviations(profiles, exact, contact=case != "sticky")
     shape = exact.bin_means(c.bins) - config.model.mean_density
@@ -74,12 +79,28 @@ def order(points: list[tuple[float, float, float]]) -> str:
     return f"q = {slope:.2f} ± {math.sqrt(covariance[0, 0]):.2f} over {span}"
 
 
+def power_law(points: list[tuple[float, float, float]]) -> str:
+    """bias = C dt^q fitted to every point (dt, bias, error), resolved or not, by weighted least squares
+    (errors taken as independent: each dt has its own seed), with the errors of q and C and the fit's
+    chi^2 per degree of freedom."""
+    dt, bias, error = (np.array(column, dtype=float) for column in zip(*points))
+    if dt.size < 3:
+        return "not fitted (fewer than 3 steps)"
+    guess = (bias[np.argmax(dt)] / dt.max(), 1.0)
+    (scale, q), covariance = curve_fit(lambda t, c, p: c * t**p, dt, bias, p0=guess, sigma=error, absolute_sigma=True, maxfev=20000)
+    chi2 = float(np.sum(((bias - scale * dt**q) / error) ** 2)) / (dt.size - 2)
+    errors = np.sqrt(np.diagonal(covariance))
+    return f"q = {q:.2f} ± {errors[1]:.2f}, C = {scale:.3g} ± {errors[0]:.2g} over all {dt.size} steps (chi2/dof {chi2:.2f})"
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--layers", default="merge,bridge")
     parser.add_argument("--steps", default=",".join(f"{dt:g}" for dt in STEPS))
     parser.add_argument("--cases", default="0.2,0.5,0.7,sticky")
     parser.add_argument("--time", type=float, default=None, help="sampled time (default 1.25 hard, 3 sticky)")
+    parser.add_argument("--replicas", type=int, default=16, help="rings per run")
+    parser.add_argument("--seed", type=int, default=11, help="the seed of the first step; the k-th step uses seed + k")
     args = parser.parse_args()
     steps = [float(value) for value in args.steps.split(",")]
     print("| case | layer | dt | L1/rho | chi2/bin | contact / exact | contact chi2/bin | c - 1 | s |")
@@ -89,8 +110,8 @@ def main() -> None:
         duration = args.time or (3.0 if case == "sticky" else 1.25)
         for layer in args.layers.split(","):
             points, contacts = [], []
-            for dt in steps:
-                f = measure(case, dt, layer, duration)
+            for k, dt in enumerate(steps):
+                f = measure(case, dt, layer, duration, args.replicas, args.seed + k)
                 ratio = "-" if f.get("contact_ratio") is None else f"{f['contact_ratio']:.4f} ± {f['contact_ratio_err']:.4f}"
                 chi2 = "-" if f.get("contact_chi2_per_dof") is None else f"{f['contact_chi2_per_dof']:.2f}"
                 print(
@@ -102,6 +123,7 @@ def main() -> None:
                 if f.get("contact_ratio") is not None:
                     contacts.append((dt, f["contact_ratio"] - 1, f["contact_ratio_err"]))
             fits.append(f"{case}, {layer}: c - 1: {order(points)}" + (f"; contact ratio - 1: {order(contacts)}" if contacts else ""))
+            fits.append(f"{case}, {layer}: c - 1 = C dt^q: {power_law(points)}")
     print("\nfitted order of |bias|:")
     print("\n".join(fits))
 
