@@ -8,8 +8,8 @@ Each point is then compared with its reference without rolling and with the slid
 with it, fig6's g6k5 (read from ``results/fig6.json``, the same settings at 800 t0; or a run folder
 named ``point=g6k5`` when given), without it the point g6k5_nonoise: the difference of eta, b and
 T_rot and its error, the frame errors of the two added in quadrature (independent runs). A point
-without the rolling noise alone is also compared with the point of the same kappa_r with every noise:
-what the rolling noise does.
+without the rolling noise alone is also compared with the point of the same kappa_r and length with
+every noise: what the rolling noise does.
 
 Written: ``rolling.json`` and ``rolling.png`` (b, eta and T_rot against kappa_r for each noise, the
 references as lines with their error bands). Usage (from the folder that holds the
@@ -137,10 +137,10 @@ def main(argv: list[str] | None = None) -> None:
         for run in runs
         if run["rolling"] and run["contact_noise"] in refs
     ]
-    consistent = {run["kappa_r"]: run for run in runs if run["rolling"] and run["noise"] == "all"}
-    for run in runs:  # what the rolling noise alone does: the same kappa_r with every noise
-        if run["noise"] == "sliding" and run["kappa_r"] in consistent:
-            same = consistent[run["kappa_r"]]
+    consistent = {(run["kappa_r"], run["length"]): run for run in runs if run["rolling"] and run["noise"] == "all"}
+    for run in runs:  # what the rolling noise alone does: the same kappa_r and length with every noise
+        same = consistent.get((run["kappa_r"], run["length"]))
+        if run["noise"] == "sliding" and same is not None:
             compared.append({"run": run["run"], "reference": same["run"]} | difference(run, same))
     if True in refs and False in refs:  # the noise without rolling: what dropping the sliding noise alone does
         compared.append({"run": refs[False]["run"], "reference": refs[True]["run"]} | difference(refs[False], refs[True]))
