@@ -354,13 +354,21 @@ inline uint64_t stream_key(uint64_t seed, uint64_t step, uint64_t stream)
   return mix(mix(mix(seed) ^ step) ^ stream);
 }
 
+// The key of pair (i, k) in a stream key: fricgen.rng.pair_key.
+inline uint64_t pair_key(uint64_t base, uint64_t i, uint64_t k)
+{
+  return mix(mix(base ^ i) ^ k);
+}
+
+const double TWO_53 = 1.0 / 9007199254740992.0;
+
 // Two independent standard normals for (stream key, i, k) and a small counter: fricgen.rng.normal_pair_at.
 inline void normal_pair_at(uint64_t base, uint64_t i, uint64_t k, uint64_t counter, double &z0, double &z1)
 {
-  const uint64_t a = mix(mix(mix(base ^ i) ^ k) ^ counter);
+  const uint64_t a = mix(pair_key(base, i, k) ^ counter);
   const uint64_t b = mix(a);
-  const double u1 = (static_cast<double>(a >> 11) + 0.5) * (1.0 / 9007199254740992.0);
-  const double u2 = static_cast<double>(b >> 11) * (1.0 / 9007199254740992.0);
+  const double u1 = (static_cast<double>(a >> 11) + 0.5) * TWO_53;
+  const double u2 = static_cast<double>(b >> 11) * TWO_53;
   const double radius = std::sqrt(-2.0 * std::log(u1));
   z0 = radius * std::cos(2.0 * 3.141592653589793 * u2);
   z1 = radius * std::sin(2.0 * 3.141592653589793 * u2);

@@ -37,16 +37,9 @@ _ZIGGURAT = Template("""
 // u < K[layer], else the tail or the wedge test (ziggurat_slow), continuing the SplitMix64 sequence from z.
 const int MODE_STREAM = ${stream};    // fricgen.rng.${stream_name}
 const double ZIG_R = ${r};
-const double TWO_53 = 1.0 / 9007199254740992.0;
 const double ZIG_W[256] = {${w}};
 const uint64_t ZIG_K[256] = {${k}};
 const double ZIG_F[257] = {${f}};
-
-// The key of pair (i, k) in a stream key: fricgen.rng.pair_key.
-inline uint64_t pair_key(uint64_t base, uint64_t i, uint64_t k)
-{
-  return mix(mix(base ^ i) ^ k);
-}
 
 inline uint64_t next_word(uint64_t &state)
 {
