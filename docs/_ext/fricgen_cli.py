@@ -5,9 +5,10 @@ A page writes a heading per command and, under it::
     ```{fricgen-cli} verify
     ```
 
-which renders the command's one-line help, its usage and one entry per argument (flags, metavar or
-choices, help text, default) as the parser has them, so the reference cannot drift from the code.
-``{fricgen-cli}`` without an argument renders the top-level command. When the build ends, a
+which renders the command's one-line help, its usage, one entry per argument (flags, metavar or
+choices, help text, default) and its examples (the epilog) as the parser has them, so the reference
+cannot drift from the code. ``{fricgen-cli}`` without an argument renders the top-level command:
+the paragraphs of its description after the first, its usage and its examples. When the build ends, a
 subcommand that no page documented is a warning (an error under ``sphinx-build -W``).
 
 The parser is the one the ``fricgen`` command runs: :func:`fricgen.app.cli.commands.parser` (override
@@ -116,6 +117,14 @@ def argument_list(parser: argparse.ArgumentParser) -> nodes.definition_list:
     return items
 
 
+def _examples(parser: argparse.ArgumentParser) -> list[nodes.Node]:
+    """The parser's epilog ("examples:" and command lines) as a paragraph and a shell block."""
+    if not parser.epilog:
+        return []
+    title, _, lines = parser.epilog.partition("\n")
+    return [nodes.paragraph(text=title.rstrip(":").capitalize() + ":"), nodes.literal_block(text=lines, language="bash")]
+
+
 class FricgenCli(SphinxDirective):
     """``{fricgen-cli} [COMMAND]``: help, usage and arguments of ``fricgen COMMAND`` (or of ``fricgen``)."""
 
@@ -126,9 +135,9 @@ class FricgenCli(SphinxDirective):
         parser = build_parser(self.env.app)
         commands = subcommands(parser)
         if not self.arguments:
-            result = [_paragraph(parser.description.strip().splitlines()[0])] if parser.description else []
+            result = [_paragraph(" ".join(part.split())) for part in (parser.description or "").split("\n\n")[1:]]
             result.append(nodes.literal_block(text=_usage(parser), language="text"))
-            return result
+            return result + _examples(parser)
         name = self.arguments[0]
         if name not in commands:
             raise self.error(f"fricgen has no command {name!r} (it has: {', '.join(commands)})")
@@ -139,7 +148,7 @@ class FricgenCli(SphinxDirective):
         result.append(nodes.literal_block(text=_usage(sub), language="text"))
         if "no-arguments" not in self.options:
             result.append(argument_list(sub))
-        return result
+        return result + _examples(sub)
 
 
 def _merge(app, env, docnames, other) -> None:

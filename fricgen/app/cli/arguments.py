@@ -25,6 +25,13 @@ class Parser(argparse.ArgumentParser):
         raise UsageError(self.prog, message)
 
 
+def add_command(subparsers, name: str, help: str, examples: str) -> argparse.ArgumentParser:
+    """A subcommand whose ``--help`` shows its one-line purpose first and its examples (lines kept) last."""
+    return subparsers.add_parser(
+        name, help=help, description=help, epilog="examples:\n" + examples, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
+
+
 #: A word that is a negative number (or -inf, -nan): the value of the flag before it, not a flag.
 NEGATIVE = re.compile(r"-(\d|\.\d|inf|nan)", re.IGNORECASE)
 

