@@ -173,6 +173,13 @@ def law_kernels(law: FrictionLaw, model: NoiseModel, order: int) -> str:
     return "\n".join(parts)
 
 
+def slope_kernel(law: FrictionLaw) -> str:
+    """friction_slope, df/du (the Itô drift of the HK calculus in the pairwise step), as the Numba kernels print it."""
+    slope = sp.diff(sp.piecewise_fold(law.friction.rewrite(sp.Piecewise)), u)
+    doc = equation("df/du", slope, "the slope of f in u (the Itô drift of the HK calculus needs it, D' = (u f' - f)/u**2)", "")
+    return kernel("friction_slope", "u, w, r, params", slope, doc, [p.symbol for p in law.parameters])
+
+
 def potential_kernels(potential: Potential) -> str:
     """energy and force (-dU/dr) of a pair potential, params = its parameters in the order of its defaults."""
     params = [potential.symbols[n] for n in potential.defaults]

@@ -35,8 +35,7 @@ _ZIGGURAT = Template("""
 // Ziggurat normals of fricgen/rng.py (Marsaglia & Tsang 2000, 256 layers), bit for bit: one SplitMix64 output
 // z = word(key, j) gives the layer (bits 0-7), the sign (bit 8) and u (bits 11-63); x = u W[layer] when
 // u < K[layer], else the tail or the wedge test (ziggurat_slow), continuing the SplitMix64 sequence from z.
-const int MODE_STREAM = ${stream};    // fricgen.rng.${stream_name}
-const double ZIG_R = ${r};
+${stream_line}const double ZIG_R = ${r};
 const double ZIG_W[256] = {${w}};
 const uint64_t ZIG_K[256] = {${k}};
 const double ZIG_F[257] = {${f}};
@@ -90,12 +89,16 @@ inline double ziggurat_normal(uint64_t key, uint64_t j)
 
 def ziggurat_support(mode: str, tables: tuple[np.ndarray, np.ndarray, np.ndarray], r: float) -> str:
     """The ziggurat of fricgen.rng in C++ with its ``tables`` (W, K, F) and tail start ``r``, and the mode's stream."""
+    return ziggurat_code(tables, r, f"const int MODE_STREAM = {STREAMS[mode]};    // fricgen.rng.{mode.upper()}\n")
+
+
+def ziggurat_code(tables: tuple[np.ndarray, np.ndarray, np.ndarray], r: float, stream_line: str = "") -> str:
+    """The ziggurat of fricgen.rng in C++ with its ``tables`` (W, K, F) and tail start ``r``, after ``stream_line``."""
     w, k, f = tables
     if (len(w), len(k), len(f)) != (256, 256, 257):
         raise ValueError(f"ziggurat tables of 256, 256 and 257 entries expected, got {len(w)}, {len(k)}, {len(f)}")
     return _ZIGGURAT.substitute(
-        stream=str(STREAMS[mode]),
-        stream_name=mode.upper(),
+        stream_line=stream_line,
         r=repr(float(r)),
         w=", ".join(repr(float(x)) for x in w),
         k=", ".join(f"{int(x)}ULL" for x in k),

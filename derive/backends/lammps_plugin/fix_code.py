@@ -1,0 +1,574 @@
+"""The C++ text of the LAMMPS fix ``fricgen/exact/<law>``: fricgen's pairwise contact step
+(fricgen/langevin/contact_step.py, docs/physics.md#the-pairwise-contact-step), formula for formula,
+under MPI domain decomposition.
+
+Per step, at post_force (after fix nve/sphere's half kick and drift and the force computation at the
+new positions, before its second half kick: the engine's B A A C B without solvent), every pair of
+atoms of the group within 2^(1/6) (R_i + R_k) takes the engine's Metropolis-adjusted move of its
+sliding mode: the same proposal (the Lamperti map and Ornstein–Uhlenbeck step of mode_step), the same
+acceptance rule and the same noise, ziggurat normals and a uniform keyed on (seed, step, CONTACT, ID_lo
+- 1, ID_hi - 1), step = ntimestep - 1 (the engine's index of the step that leads to ntimestep).
+
+Order and decomposition (docs/guide/lammps.md#the-exact-contact-step): the rank owning the atom of
+lower ID updates the pair. Along each dimension split between ranks, each sub-domain is cut in two
+halves; a pair belongs to the phase given by the halves holding its lower-ID atom (2, 4 or 8 phases;
+one on a single rank). The phases run one after another; within a phase the same halves of different
+ranks are more than two contact reaches apart, so no atom is touched by two ranks. A rank updates the
+pairs of a phase in the engine's order: sorted by IDs, greedily edge-coloured, colour after colour
+(contact_step.colour_classes); an atom's ghost copies share one canonical copy (atom->map). After a
+phase, the touched ghost copies' velocities and spins go to their owners (reverse communication, a
+copy that was not touched carries none) and the owners' to every ghost (forward communication).
+On one rank the fix therefore reproduces the engine's step bit for bit; on several, the engine's step
+with the touching pairs split by phase.
+"""
+
+from __future__ import annotations
+
+from string import Template
+
+from .templates import LAW_CONSTANTS
+
+#: theta of each calculus (fricgen.derive.calculus.Calculus.theta): where the scheme evaluates D.
+THETA = {"ito": "0.0", "stratonovich": "0.5", "hk": "1.0"}
+
+FIX_HEADER = Template("""#ifndef LMP_FIX_FRICGEN_${LAW_UPPER}_H
+#define LMP_FIX_FRICGEN_${LAW_UPPER}_H
+
+#include "fix.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+// fix ID group fricgen/exact/${law} kT seed [noise yes|no] [inertia sphere|disc|c] [name value ...]
+// (law parameters: ${parameter_list}; sigma is 1: distances are scaled by R_i + R_k, as in fricgen's engine)
+class ${fix_cls} : public Fix {
+ public:
+  ${fix_cls}(class LAMMPS *, int, char **);
+  ~${fix_cls}() override;
+  int setmask() override;
+  void init() override;
+  void init_list(int, class NeighList *) override;
+  void setup(int) override;
+  void post_force(int) override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  int pack_reverse_comm(int, int, double *) override;
+  void unpack_reverse_comm(int, int *, double *) override;
+
+  struct Pair {
+    tagint lo, hi;    // atom IDs, lo < hi
+    int i, j, c;      // owned atom of ID lo, the neighbour-list copy of hi, its canonical copy
+    int phase, colour;
+  };
+
+ protected:
+  double kT, inertia, reach;
+  bigint seed;
+  int noise_on;
+  double params[${nparams}];
+  class NeighList *list;
+  std::vector<Pair> pairs;
+  std::vector<uint64_t> used;
+  std::vector<char> touched;
+  void check_domain();
+  void step_pair(const Pair &, uint64_t);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+""")
+
+#: The engine's step, hand-ported: complex numbers as Numba's, mode_step, _propose and the tangents.
+STEP_CODE = r"""
+// --- the pairwise contact step (fricgen/langevin/contact_step.py, step for step) -------------------
+
+// A complex number with Numba's arithmetic (numba.cpython.numbers: (a+bi)(c+di) = (ac-bd) + (ad+bc)i);
+// a real factor enters as (a, 0), as Numba converts it.
+struct Cx {
+  double re, im;
+};
+inline Cx real(double a) { return {a, 0.0}; }
+inline Cx operator+(Cx a, Cx b) { return {a.re + b.re, a.im + b.im}; }
+inline Cx operator-(Cx a, Cx b) { return {a.re - b.re, a.im - b.im}; }
+inline Cx operator*(Cx a, Cx b) { return {a.re * b.re - a.im * b.im, a.re * b.im + a.im * b.re}; }
+inline bool same(Cx a, Cx b) { return a.re == b.re && a.im == b.im; }
+inline bool nonzero(Cx a) { return a.re != 0.0 || a.im != 0.0; }
+
+// e^z - 1 without cancellation (z real for one component): contact_step._expm1.
+inline Cx expm1_c(Cx z, int comps)
+{
+  if (comps == 1) return {std::expm1(z.re), 0.0};
+  const double grow = std::expm1(z.re), half = std::sin(0.5 * z.im);
+  return {grow * std::cos(z.im) - 2.0 * half * half, (grow + 1.0) * std::sin(z.im)};
+}
+
+// The principal log(1 + z): contact_step._log1p.
+inline Cx log1p_c(Cx z, int comps)
+{
+  if (comps == 1) return {std::log1p(z.re), 0.0};
+  return {0.5 * std::log1p(z.re * (2.0 + z.re) + z.im * z.im), std::atan2(z.im, 1.0 + z.re)};
+}
+
+inline Cx inverse(Cx z)
+{
+  const double scale = 1.0 / (z.re * z.re + z.im * z.im);
+  return {z.re * scale, -z.im * scale};
+}
+
+// 53-bit uniform in [0, 1) for (key, j): fricgen.rng.uniform.
+inline double uniform(uint64_t key, uint64_t j)
+{
+  return static_cast<double>(mix(key + j * GOLDEN) >> 11) * TWO_53;
+}
+
+struct ModeStep {
+  double ratio;
+  Cx m;
+  double s2;
+  Cx g;
+};
+
+// The proposal from the mode x (contact_step.mode_step): (f/u, m, s2, g), y = x + (e^(g W) - 1)/g,
+// W = m + sqrt(s2) (xi1 + i xi2), g the conjugate of grad ln sqrt(D).
+inline ModeStep mode_step(Cx x, double w, double r, double mu, double kT, double dt, const double *params, int comps)
+{
+  const double u = comps == 1 ? std::fabs(x.re) : std::sqrt(x.re * x.re + x.im * x.im);
+  const double ratio = friction_over_u(u, w, r, params);
+  const double amplitude = noise_amplitude_${calculus}(u, w, r, mu, kT, params);
+  double slope_over_u;
+  if (THETA == 1.0)    // D'/u with D = f/u
+    slope_over_u = u > 0.0 ? (friction_slope(u, w, r, params) - ratio) / (u * u) : 0.0;
+  else
+    slope_over_u = (amplitude - ratio) / ((1.0 - THETA) * mu * kT);
+  const double rate = mu * amplitude;
+  const double decay = std::expm1(-rate * dt);
+  const double span = rate > 0.0 ? -decay / rate : dt;
+  const double s2 = -mu * kT * decay * (2.0 + decay);
+  const Cx g = real(amplitude > 0.0 ? 0.5 * slope_over_u / amplitude : 0.0) * Cx{x.re, -x.im};
+  Cx m = real(-mu * ratio + THETA * mu * mu * kT * slope_over_u) * x * real(span);
+  if (comps == 1) m = m - real(0.5) * g * real(s2);
+  return {ratio, m, s2, g};
+}
+
+inline double log_proposal(double xi2, Cx g_w, int comps)
+{
+  return -0.5 * xi2 - comps * g_w.re;
+}
+
+// The Metropolis-Hastings move of the mode from x (contact_step._propose): y, and in rejection 1 - min(1, alpha).
+inline Cx propose(Cx x, double w, double r, double mu, double kT, double dt, const double *params, uint64_t key, int comps,
+                  double &rejection)
+{
+  rejection = 0.0;
+  const ModeStep a = mode_step(x, w, r, mu, kT, dt, params, comps);
+  if (!(a.s2 > 0.0)) return x;
+  const Cx xi = {ziggurat_normal(key, 0), comps == 2 ? ziggurat_normal(key, 1) : 0.0};
+  const Cx move = a.m + real(std::sqrt(a.s2)) * xi;
+  const Cx g_w = a.g * move;
+  rejection = 1.0;
+  if (std::fabs(g_w.im) >= 3.141592653589793) return x;
+  const Cx y = x + (nonzero(a.g) ? expm1_c(g_w, comps) * inverse(a.g) : move);
+  const ModeStep b = mode_step(y, w, r, mu, kT, dt, params, comps);
+  const Cx z = b.g * (x - y);
+  if (!(b.s2 > 0.0 && (comps == 2 || 1.0 + z.re > 0.0))) return x;
+  const Cx back = nonzero(b.g) ? log1p_c(z, comps) * inverse(b.g) : x - y;
+  double log_alpha = (x.re * x.re + x.im * x.im - y.re * y.re - y.im * y.im) / (2.0 * mu * kT);
+  const Cx shift = back - b.m;
+  const double xi2_back = (shift.re * shift.re + shift.im * shift.im) / b.s2;
+  log_alpha += log_proposal(xi2_back, b.g * back, comps) - log_proposal(xi.re * xi.re + xi.im * xi.im, g_w, comps);
+  log_alpha += 0.5 * comps * std::log(a.s2 / b.s2);
+  if (log_alpha >= 0.0) {
+    rejection = 0.0;
+    return y;
+  }
+  const double alpha = std::exp(log_alpha);
+  if (!(alpha == alpha)) return x;
+  rejection = 1.0 - alpha;
+  return uniform(key, 2) < alpha ? y : x;
+}
+
+// Orthonormal tangents e1, e2 of the contact plane (contact_step._tangents); in 2-D e1 = z x n, e2 = 0.
+inline void tangents(const double *n, bool three, double *e1, double *e2)
+{
+  if (!three) {
+    e1[0] = -n[1];
+    e1[1] = n[0];
+    e1[2] = 0.0;
+    e2[0] = e2[1] = e2[2] = 0.0;
+    return;
+  }
+  const double ax = std::fabs(n[0]) < 0.9 ? 1.0 : 0.0, ay = std::fabs(n[0]) < 0.9 ? 0.0 : 1.0;
+  const double along = ax * n[0] + ay * n[1];
+  double tx = ax - along * n[0], ty = ay - along * n[1], tz = -along * n[2];
+  const double norm = std::sqrt(tx * tx + ty * ty + tz * tz);
+  tx = tx / norm;
+  ty = ty / norm;
+  tz = tz / norm;
+  e1[0] = tx;
+  e1[1] = ty;
+  e1[2] = tz;
+  e2[0] = n[1] * tz - n[2] * ty;
+  e2[1] = n[2] * tx - n[0] * tz;
+  e2[2] = n[0] * ty - n[1] * tx;
+}
+"""
+
+FIX_SOURCE = Template(
+    r"""#include "fix_fricgen_${law}.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "modify.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+#include "update.h"
+#include "utils.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+namespace {
+
+"""
+    + LAW_CONSTANTS
+    + r"""const int SIGMA_INDEX = ${sigma_index};    // 1: distances scaled by sigma_ik = R_i + R_k (the engine's convention)
+const double WCA_RANGE = 1.122462048309373;    // 2^(1/6)
+const double THETA = ${theta};    // the ${calculus} calculus (contact_step.THETA)
+
+${support}${ziggurat}
+// --- the law's kernels (derive, verified: ${verified}) -------------------------------------------
+
+${kernels}
+${step_code}}    // namespace
+
+${fix_cls}::${fix_cls}(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg), list(nullptr)
+{
+  if (narg < 5) error->all(FLERR, "Illegal fix fricgen/exact/${law} command: give kT and seed");
+  kT = utils::numeric(FLERR, arg[3], false, lmp);
+  seed = utils::bnumeric(FLERR, arg[4], false, lmp);
+  if (!(kT > 0.0)) error->all(FLERR, "fix fricgen/exact/${law}: kT must be > 0, got {}", kT);
+  if (seed < 0) error->all(FLERR, "fix fricgen/exact/${law}: seed must be >= 0, got {}", seed);
+  noise_on = 1;
+  inertia = 0.4;
+  for (int k = 0; k < NPARAMS; k++) params[k] = DEFAULTS[k];
+  if (SIGMA_INDEX >= 0) params[SIGMA_INDEX] = 1.0;
+  for (int a = 5; a < narg; a += 2) {
+    if (a + 1 >= narg) error->all(FLERR, "fix fricgen/exact/${law}: keyword {} needs a value", arg[a]);
+    const std::string key = arg[a];
+    if (key == "noise") {
+      noise_on = utils::logical(FLERR, arg[a + 1], false, lmp);
+      continue;
+    }
+    if (key == "inertia") {
+      const std::string value = arg[a + 1];
+      inertia = value == "sphere" ? 0.4 : value == "disc" ? 0.5 : utils::numeric(FLERR, value, false, lmp);
+      if (!(inertia > 0.0)) error->all(FLERR, "fix fricgen/exact/${law}: inertia must be sphere, disc or a factor > 0");
+      continue;
+    }
+    int k = 0;
+    while (k < NPARAMS && key != PARAMETERS[k]) k++;
+    if (k == NPARAMS || k == SIGMA_INDEX)
+      error->all(FLERR, "fix fricgen/exact/${law}: unknown keyword {} (noise, inertia or a law parameter: ${parameter_list})", key);
+    const double value = utils::numeric(FLERR, arg[a + 1], false, lmp);
+    const double *range = RANGES[k];
+    const bool above = value > range[0] || (range[2] != 0.0 && value == range[0]);
+    const bool below = value < range[1] || (range[3] != 0.0 && value == range[1]);
+    if (!(above && below))
+      error->all(FLERR, "fix fricgen/exact/${law}: {} = {} is outside its range {}{}, {}{}", key, value,
+                 range[2] != 0.0 ? "[" : "(", range[0], range[1], range[3] != 0.0 ? "]" : ")");
+    params[k] = value;
+  }
+  comm_forward = 6;
+  comm_reverse = 7;
+  reach = 0.0;
+}
+
+${fix_cls}::~${fix_cls}() = default;
+
+int ${fix_cls}::setmask()
+{
+  return POST_FORCE;
+}
+
+void ${fix_cls}::init()
+{
+  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag)
+    error->all(FLERR, "fix fricgen/exact/${law} needs radius, per-atom mass and omega: use atom_style sphere");
+  if (domain->triclinic)
+    error->all(FLERR, "fix fricgen/exact/${law}: triclinic boxes are not supported (the phases halve orthogonal sub-domains)");
+  if (atom->map_style == Atom::MAP_NONE)
+    error->all(FLERR, "fix fricgen/exact/${law} needs an atom map: put atom_modify map array before the box is created");
+  if (!comm->ghost_velocity)
+    error->all(FLERR, "fix fricgen/exact/${law} needs the velocities of ghost atoms: use comm_modify vel yes");
+  if (modify->get_fix_by_style("^nve/sphere").empty())
+    error->all(FLERR, "fix fricgen/exact/${law} needs fix nve/sphere: it integrates positions, forces and spins around the contact step");
+  if (force->pair_match("fricgen/${law}", 1))
+    error->all(FLERR, "fix fricgen/exact/${law} and pair_style fricgen/${law} would apply the friction of ${law} twice: "
+               "take lj/cut for WCA with the fix, or the pair style alone");
+  neighbor->add_request(this, NeighConst::REQ_FULL);
+}
+
+void ${fix_cls}::init_list(int, NeighList *ptr)
+{
+  list = ptr;
+}
+
+void ${fix_cls}::setup(int)
+{
+  double largest = 0.0, all;
+  for (int i = 0; i < atom->nlocal; i++) largest = std::max(largest, atom->radius[i]);
+  MPI_Allreduce(&largest, &all, 1, MPI_DOUBLE, MPI_MAX, world);
+  reach = WCA_RANGE * 2.0 * all;
+  if (reach > neighbor->cutneighmax - neighbor->skin)
+    error->all(FLERR, "fix fricgen/exact/${law}: the contacts reach {} (2^(1/6) times the largest diameter), beyond the pair "
+               "cutoff {}: give the pair style a cutoff of at least {}", reach, neighbor->cutneighmax - neighbor->skin, reach);
+  check_domain();
+}
+
+// Each half of a split sub-domain must be wider than two contact reaches and the skin: atoms touched in one
+// phase by two ranks would otherwise meet.
+void ${fix_cls}::check_domain()
+{
+  for (int d = 0; d < domain->dimension; d++) {
+    const double half = 0.5 * (domain->subhi[d] - domain->sublo[d]);
+    if (comm->procgrid[d] > 1 && !(half > 2.0 * reach + neighbor->skin))
+      error->one(FLERR, "fix fricgen/exact/${law}: sub-domains too thin along {}: half a sub-domain is {}, the phases need more than "
+                 "2 contact reaches + skin = {}: use fewer ranks along it (processors) or a larger system",
+                 "xyz"[d], half, 2.0 * reach + neighbor->skin);
+  }
+}
+
+// The engine's pairwise step of one pair (contact_step.update_pair) on the canonical copies i and c.
+void ${fix_cls}::step_pair(const Pair &p, uint64_t key)
+{
+  double **x = atom->x, **v = atom->v, **omega = atom->omega;
+  const double *radius = atom->radius, *rmass = atom->rmass;
+  const bool three = domain->dimension == 3;
+  const int i = p.i, k = p.c;
+  const double dx = x[p.j][0] - x[i][0], dy = x[p.j][1] - x[i][1], dz = x[p.j][2] - x[i][2];
+  const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+  const double n[3] = {dx / r, dy / r, dz / r};
+  const double ri = radius[i], rk = radius[k], sigma = ri + rk;
+  const double w = ${weight_call};
+  const double inv_mi = 1.0 / rmass[i], inv_mk = 1.0 / rmass[k];
+  const double inv_ii = 1.0 / (inertia * rmass[i] * (ri * ri)), inv_ik = 1.0 / (inertia * rmass[k] * (rk * rk));
+  const double mu = inv_mi + inv_mk + ri * ri * inv_ii + rk * rk * inv_ik;
+  // u_perp = P (v_k - v_i) - (R_i w_i + R_k w_k) x n (F-4) as x = u_perp . (e1 + i e2): contact_step.contact_mode
+  const double wx = ri * omega[i][0] + rk * omega[k][0], wy = ri * omega[i][1] + rk * omega[k][1];
+  const double wz = ri * omega[i][2] + rk * omega[k][2];
+  const double cx = wy * n[2] - wz * n[1], cy = wz * n[0] - wx * n[2], cz = wx * n[1] - wy * n[0];
+  const double ux = v[k][0] - v[i][0] - cx, uy = v[k][1] - v[i][1] - cy, uz = v[k][2] - v[i][2] - cz;
+  double e1[3], e2[3];
+  tangents(n, three, e1, e2);
+  const Cx xm = {ux * e1[0] + uy * e1[1] + uz * e1[2], ux * e2[0] + uy * e2[1] + uz * e2[2]};
+  const int comps = three ? 2 : 1;
+  const double dt = update->dt;
+  Cx y;
+  if (noise_on) {
+    double rejection;
+    y = propose(xm, w, r, mu, kT, dt, params, pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1),
+                comps, rejection);
+  } else {
+    y = xm * real(std::exp(-mu * mode_step(xm, w, r, mu, kT, dt, params, comps).ratio * dt));
+  }
+  if (same(y, xm)) return;
+  const double jp = (xm.re - y.re) / mu, jq = (xm.im - y.im) / mu;    // impulse on i: u_perp -> u_perp - mu J
+  const double jx = jp * e1[0] + jq * e2[0], jy = jp * e1[1] + jq * e2[1], jz = jp * e1[2] + jq * e2[2];
+  const double tx = n[1] * jz - n[2] * jy, ty = n[2] * jx - n[0] * jz, tz = n[0] * jy - n[1] * jx;
+  const int particles[2] = {i, k};
+  const double signs[2] = {1.0, -1.0}, arms[2] = {ri, rk}, inv_m[2] = {inv_mi, inv_mk}, inv_i[2] = {inv_ii, inv_ik};
+  for (int s = 0; s < 2; s++) {
+    const int a = particles[s];
+    const double scale = signs[s] * inv_m[s], turn = arms[s] * inv_i[s];
+    v[a][0] += scale * jx;
+    v[a][1] += scale * jy;
+    v[a][2] += scale * jz;
+    omega[a][0] += turn * tx;
+    omega[a][1] += turn * ty;
+    omega[a][2] += turn * tz;
+  }
+  if (k >= atom->nlocal) touched[k] = 1;
+}
+
+void ${fix_cls}::post_force(int)
+{
+  double **x = atom->x;
+  const double *radius = atom->radius;
+  const tagint *tag = atom->tag;
+  const int *mask = atom->mask;
+  const int nall = atom->nlocal + atom->nghost;
+  const uint64_t key = stream_key(static_cast<uint64_t>(seed), static_cast<uint64_t>(update->ntimestep - 1), CONTACT_STREAM);
+  check_domain();
+  int split[3] = {0, 0, 0}, phases = 1;
+  for (int d = 0; d < domain->dimension; d++)
+    if (comm->procgrid[d] > 1) {
+      split[d] = phases;
+      phases *= 2;
+    }
+  // the pairs in contact, each once: from the owned atom of lower ID, in the phase of the halves that hold it
+  pairs.clear();
+  const int *ilist = list->ilist, *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = ilist[ii];
+    if (!(mask[i] & groupbit)) continue;
+    int phase = 0;
+    for (int d = 0; d < 3; d++)
+      if (split[d] && x[i][d] >= 0.5 * (domain->sublo[d] + domain->subhi[d])) phase += split[d];
+    for (int jj = 0; jj < numneigh[i]; jj++) {
+      const int j = firstneigh[i][jj] & NEIGHMASK;
+      if (tag[j] <= tag[i] || !(mask[j] & groupbit)) continue;
+      const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
+      const double range = WCA_RANGE * (radius[i] + radius[j]);
+      if (dx * dx + dy * dy + dz * dz >= range * range) continue;
+      pairs.push_back({tag[i], tag[j], i, j, atom->map(tag[j]), phase, 0});
+    }
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const Pair &a, const Pair &b) {
+    return a.phase != b.phase ? a.phase < b.phase : a.lo != b.lo ? a.lo < b.lo : a.hi < b.hi;
+  });
+  // greedy edge colouring in pair order within each phase (contact_step.colour_classes)
+  std::vector<int> degree(nall, 0);
+  int most = 0;
+  for (const Pair &p : pairs) most = std::max(most, std::max(++degree[p.i], ++degree[p.c]));
+  const int words = (2 * most) / 64 + 1;
+  used.assign(static_cast<size_t>(nall) * words, 0);
+  touched.assign(nall, 0);
+  size_t first = 0;
+  while (first < pairs.size()) {
+    size_t last = first;
+    while (last < pairs.size() && pairs[last].phase == pairs[first].phase) last++;
+    for (size_t q = first; q < last; q++) {
+      Pair &p = pairs[q];
+      uint64_t *ui = &used[static_cast<size_t>(p.i) * words], *uc = &used[static_cast<size_t>(p.c) * words];
+      int word = 0;
+      while (~(ui[word] | uc[word]) == 0) word++;
+      const uint64_t free = ~(ui[word] | uc[word]);
+      int bit = 0;
+      while (((free >> bit) & 1ULL) == 0) bit++;
+      ui[word] |= 1ULL << bit;
+      uc[word] |= 1ULL << bit;
+      p.colour = word * 64 + bit;
+    }
+    for (size_t q = first; q < last; q++) {
+      std::fill_n(&used[static_cast<size_t>(pairs[q].i) * words], words, 0);
+      std::fill_n(&used[static_cast<size_t>(pairs[q].c) * words], words, 0);
+    }
+    std::stable_sort(pairs.begin() + first, pairs.begin() + last, [](const Pair &a, const Pair &b) { return a.colour < b.colour; });
+    first = last;
+  }
+  // the phases one after another; the pairs of a phase in colour order
+  size_t q = 0;
+  for (int phase = 0; phase < phases; phase++) {
+    for (; q < pairs.size() && pairs[q].phase == phase; q++) step_pair(pairs[q], key);
+    if (phases == 1) break;
+    comm->reverse_comm(this);    // touched ghost copies to their owners
+    std::fill(touched.begin(), touched.end(), 0);
+    if (phase + 1 < phases) comm->forward_comm(this);    // the owners' velocities and spins to every ghost
+  }
+}
+
+int ${fix_cls}::pack_forward_comm(int n, int *send, double *buf, int, int *)
+{
+  double **v = atom->v, **omega = atom->omega;
+  int m = 0;
+  for (int s = 0; s < n; s++) {
+    const int i = send[s];
+    for (int a = 0; a < 3; a++) buf[m++] = v[i][a];
+    for (int a = 0; a < 3; a++) buf[m++] = omega[i][a];
+  }
+  return m;
+}
+
+void ${fix_cls}::unpack_forward_comm(int n, int first, double *buf)
+{
+  double **v = atom->v, **omega = atom->omega;
+  int m = 0;
+  for (int i = first; i < first + n; i++) {
+    for (int a = 0; a < 3; a++) v[i][a] = buf[m++];
+    for (int a = 0; a < 3; a++) omega[i][a] = buf[m++];
+  }
+}
+
+int ${fix_cls}::pack_reverse_comm(int n, int first, double *buf)
+{
+  double **v = atom->v, **omega = atom->omega;
+  int m = 0;
+  for (int i = first; i < first + n; i++) {
+    buf[m++] = touched[i] ? 1.0 : 0.0;
+    for (int a = 0; a < 3; a++) buf[m++] = v[i][a];
+    for (int a = 0; a < 3; a++) buf[m++] = omega[i][a];
+  }
+  return m;
+}
+
+// A touched copy's velocity and spin replace the receiver's (no other rank touched that atom in the phase).
+void ${fix_cls}::unpack_reverse_comm(int n, int *receive, double *buf)
+{
+  double **v = atom->v, **omega = atom->omega;
+  int m = 0;
+  for (int s = 0; s < n; s++, m += 7) {
+    const int j = receive[s];
+    if (buf[m] == 0.0) continue;
+    for (int a = 0; a < 3; a++) v[j][a] = buf[m + 1 + a];
+    for (int a = 0; a < 3; a++) omega[j][a] = buf[m + 4 + a];
+    touched[j] = 1;
+  }
+}
+"""
+)
+
+
+def fix_files(fields: dict[str, str], kernels: str, support: str, ziggurat: str, weighted: bool) -> dict[str, str]:
+    """The fix's header and source (by file name) of a sliding law, from the pair style's ``fields``, the law's
+    C++ ``kernels`` (with friction_slope), the shared ``support`` code, the ``ziggurat`` and whether f has a weight."""
+    values = {
+        **fields,
+        "fix_cls": fix_class(fields["law"]),
+        "theta": THETA[fields["calculus"]],
+        "support": support,
+        "ziggurat": ziggurat,
+        "kernels": kernels,
+        "step_code": Template(STEP_CODE).substitute(calculus=fields["calculus"]),
+        "weight_call": "weight(r / sigma, params) / sigma" if weighted else "1.0",
+    }
+    law = fields["law"]
+    return {f"fix_fricgen_{law}.h": FIX_HEADER.substitute(values), f"fix_fricgen_{law}.cpp": FIX_SOURCE.substitute(values)}
+
+
+def fix_class(law: str) -> str:
+    return "FixFricgen" + "".join(part[:1].upper() + part[1:] for part in law.split("_"))
+
+
+PLUGIN_FIELDS = Template("""#include "fix_fricgen_${law}.h"
+|
+static Fix *fix_creator(LAMMPS *lmp, int argc, char **argv)
+{
+  return new ${fix_cls}(lmp, argc, argv);
+}
+|
+  plugin.style = "fix";
+  plugin.name = "fricgen/exact/${law}";
+  plugin.info = "fricgen: the pairwise contact step of friction law ${law} (Metropolis-adjusted, ${calculus} calculus)";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_creator;
+  (*register_plugin)(&plugin, lmp);
+""")
+
+
+def plugin_fields(law: str, calculus: str) -> dict[str, str]:
+    """What the plugin's registration (templates.PLUGIN) adds for the fix: its include, creator and registration."""
+    include, creator, registration = PLUGIN_FIELDS.substitute(law=law, fix_cls=fix_class(law), calculus=calculus).split("|\n")
+    return {"fix_include": include, "fix_creator": creator, "fix_registration": registration}
