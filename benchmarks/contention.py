@@ -21,12 +21,13 @@ ROUNDS = 3
 SETUPS = [("tbb", 1, ""), ("tbb", 2, ""), ("omp", 1, ""), ("omp", 2, ""), ("omp", 2, "PASSIVE")]
 MEASURE = """
 import statistics, time
-import fricgen, numba
+import fricgen.compiled, numba
 numba.set_num_threads({threads})
+from fricgen.kernels import load_law_kernels
 from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, Thermostat, lattice_state
 particles = Particles.spheres(10_000)
 config = LangevinConfig(law=Law("coulomb_newton"), thermostat=Thermostat(dt=1e-3))
-simulation = Simulation(config, particles, lattice_state(particles, 2, 0.6))
+simulation = Simulation(config, particles, lattice_state(particles, 2, 0.6), load_law_kernels(config.law.name))
 simulation.threads = {threads}
 simulation.advance(2000)
 times = []

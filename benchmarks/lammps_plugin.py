@@ -31,6 +31,8 @@ from pathlib import Path
 import numba
 
 from fricgen.app.cli.lammps import build_plugin, locate_lammps, plugin_folder
+from fricgen.derive.law.catalogues import BUILT_IN
+from fricgen.kernels import load_law_kernels
 from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, Thermostat, lattice_state
 
 N = 10_000
@@ -40,7 +42,7 @@ LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps wi
 
 def plugin_input(folder: Path) -> str:
     """The 2-D template with a 500-step warm-up before the timed run (as the peers' inputs)."""
-    template = (plugin_folder("coulomb_newton") / "in.coulomb_newton_2d").read_text()
+    template = (plugin_folder(BUILT_IN.find("coulomb_newton")) / "in.coulomb_newton_2d").read_text()
     (folder / "in.plugin").write_text(template.replace("run             ${nrun}", "run             500\nrun             ${nrun}"))
     return str(folder / "in.plugin")
 
@@ -58,7 +60,7 @@ def engine(threads: int) -> Simulation:
     numba.set_num_threads(threads)
     particles = Particles.spheres(N)
     config = LangevinConfig(law=Law("coulomb_newton"), thermostat=Thermostat(dt=1e-3))
-    simulation = Simulation(config, particles, lattice_state(particles, 2, 0.6))
+    simulation = Simulation(config, particles, lattice_state(particles, 2, 0.6), load_law_kernels(config.law.name))
     simulation.advance(200)
     return simulation
 
@@ -76,7 +78,7 @@ def main() -> None:
     parser.add_argument("--steps", type=int, default=1000, help="timed steps per measurement")
     options = parser.parse_args()
     lammps = locate_lammps()
-    plugin = build_plugin(plugin_folder("coulomb_newton"), lammps)
+    plugin = build_plugin(plugin_folder(BUILT_IN.find("coulomb_newton")), lammps)
     work = Path(tempfile.mkdtemp(prefix="fricgen-bench-"))
     scripts = {"LAMMPS A": (str(PEERS / "in.A_2d_wca_langevin"), []), "plugin": (plugin_input(work), ["-var", "plugin", str(plugin)])}
     threads = [t for t in (1, 2) if t <= numba.config.NUMBA_NUM_THREADS]

@@ -25,6 +25,7 @@ import sys
 import time
 from pathlib import Path
 
+from fricgen.kernels import load_law_kernels
 from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, Thermostat, lattice_state
 
 N, STEPS, REPEATS, EQUILIBRATE = 10_000, 500, 3, 2000
@@ -35,7 +36,7 @@ SETUPS = {"frictionless": {"friction": False}, "pairwise": {}, "explicit": {"con
 def simulation(dim: int, n: int = N, equilibrate: int = EQUILIBRATE, **law) -> Simulation:
     particles = Particles.spheres(n)
     config = LangevinConfig(law=Law("coulomb_newton", **law), thermostat=Thermostat(dt=1e-3))
-    sim = Simulation(config, particles, lattice_state(particles, dim, 0.6 if dim == 2 else 0.3))
+    sim = Simulation(config, particles, lattice_state(particles, dim, 0.6 if dim == 2 else 0.3), load_law_kernels(config.law.name))
     sim.advance(equilibrate)  # a fluid with its contacts (the lattice start has none)
     return sim
 

@@ -20,9 +20,10 @@ import numpy as np
 
 from fricgen.app.studies.mips import Frame, detect
 from fricgen.errors import SimulationError
+from fricgen.kernels import load_law_kernels
 from fricgen.langevin.analysis import block_estimate, temperatures
 from fricgen.langevin.simulation import Simulation
-from fricgen.langevin.trajectory import load_checkpoint
+from fricgen.langevin.trajectory import checkpoint_config, load_checkpoint
 
 
 def closest_approach(frame: Frame) -> float:
@@ -33,9 +34,10 @@ def closest_approach(frame: Frame) -> float:
 
 
 def continue_at(path: str, dt: float, duration: float) -> str:
-    loaded = load_checkpoint(path)
+    stored = checkpoint_config(path)
+    loaded = load_checkpoint(path, load_law_kernels(stored.law.name))
     config = dataclasses.replace(loaded.config, thermostat=dataclasses.replace(loaded.config.thermostat, dt=dt))
-    simulation = Simulation(config, loaded.particles, loaded.state)
+    simulation = Simulation(config, loaded.particles, loaded.state, loaded.law)
     simulation.threads = 1
     mobile, t, frames = loaded.particles.mobile, [], []
 
@@ -65,7 +67,7 @@ def main() -> None:
     parser.add_argument("--time", type=float, default=1.0, help="t_R per dt")
     parser.add_argument("--dt", type=float, nargs="+", default=[5e-5, 1e-4, 2e-4, 4e-4, 8e-4])
     args = parser.parse_args()
-    law = load_checkpoint(args.checkpoint).config.law
+    law = checkpoint_config(args.checkpoint).law
     print(f"{args.checkpoint}: friction {law.friction}, contact noise {law.contact_noise}; {args.time:g} t_R per dt")
     for dt in args.dt:
         print(f"  dt = {dt:g}: {continue_at(args.checkpoint, dt, args.time)}", flush=True)

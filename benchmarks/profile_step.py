@@ -27,6 +27,7 @@ os.environ["NUMBA_CACHE_DIR"] = tempfile.mkdtemp(prefix="fricgen-profile-")  # b
 import numba  # noqa: E402
 from numba.core.registry import CPUDispatcher  # noqa: E402
 
+from fricgen.kernels import load_law_kernels  # noqa: E402
 from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, Thermostat, lattice_state  # noqa: E402
 
 
@@ -60,7 +61,8 @@ def main() -> None:
         sys.exit("perf is not installed (Debian: apt install linux-perf)")
     numba.set_num_threads(1)
     particles = Particles.spheres(10_000)
-    sim = Simulation(LangevinConfig(law=Law("coulomb_newton"), thermostat=Thermostat(dt=1e-3)), particles, lattice_state(particles, 2, 0.6))
+    config = LangevinConfig(law=Law("coulomb_newton"), thermostat=Thermostat(dt=1e-3))
+    sim = Simulation(config, particles, lattice_state(particles, 2, 0.6), load_law_kernels("coulomb_newton"))
     sim.threads = 1
     sim.advance(1500)
     print(f"perf map: {perf_map(f'/tmp/perf-{os.getpid()}.map')} functions")

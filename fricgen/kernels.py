@@ -25,13 +25,17 @@ byte for byte, what fricgen wrote there on this machine, as recorded in the user
 (:mod:`fricgen.derive.law.manifests`; docs/trust-model.md). A kernel edited by hand, or a file dropped
 there, is refused with the command that regenerates it, before anything of the folder runs.
 
-A law's name is looked up on the search path of :mod:`fricgen.derive.law.catalogues`: the user's law folders
-(:func:`user_laws` blocks, ``FRICGEN_LAWS``), then the built-in catalogue. The kernels of a user
-folder DIR are those generated into DIR/generated/ (``fricgen generate --laws DIR LAW``); potentials
-are built-in only.
+A law's name is looked up on a search path (:class:`~fricgen.derive.law.catalogues.LawSearch`: the user's
+law folders, then the built-in catalogue) handed in by the caller; only :func:`load_law`, the notebook's
+edge, reads ``FRICGEN_LAWS``. The kernels of a user folder DIR are those generated into DIR/generated/
+(``fricgen generate --laws DIR LAW``); potentials are built-in only.
 """
 
 from __future__ import annotations
+
+import fricgen.compiled  # noqa: F401  (first: sets Numba up before anything imports it)
+
+# isort: split
 
 import ast
 import hashlib
@@ -49,7 +53,7 @@ import numpy as np
 from numba import types
 
 import fricgen.derive.law.manifests as manifests
-from fricgen.derive.law.catalogues import CatalogueError, find_law, generate_command, is_built_in, kernel_folder, law_folder, user_laws
+from fricgen.derive.law.catalogues import BUILT_IN, LAWS_ENV, CatalogueError, LawSearch, generate_command, is_built_in, kernel_folder
 from fricgen.derive.law.lawdata import POSITIVE, Interval, LawFileError, potential_source_hash, read_law_data, source_hash, weight_potential
 
 from .errors import ConfigError, KernelError
@@ -268,13 +272,13 @@ def _run_verified(module_name: str, folder: Path, file: str, source: bytes) -> M
     return module
 
 
-def load_law_kernels(name: str, catalogue: str | Path | None = None) -> LawKernels:
-    """Kernels of the law ``name`` from the catalogue folder ``catalogue``, by default the first on the
-    search path (user folders: :func:`user_laws`, FRICGEN_LAWS; then the built-in catalogue) that has
-    it; raises KernelError if the law is unknown, its kernels missing, not written by fricgen on this
-    machine (a user folder's, see :func:`_user_kernels`) or stale."""
+def load_law_kernels(name: str, search: LawSearch = BUILT_IN) -> LawKernels:
+    """Kernels of the law ``name``, from the first catalogue of ``search`` that has it (by default the
+    built-in catalogue alone; ``LawSearch.only(folder)`` for one folder); raises KernelError if the law
+    is unknown, its kernels missing, not written by fricgen on this machine (a user folder's, see
+    :func:`_user_kernels`) or stale."""
     try:
-        path = find_law(name, catalogue)
+        path = search.find(name)
         data = read_law_data(path)
         digest = source_hash(data)
     except (CatalogueError, LawFileError) as error:
@@ -307,16 +311,15 @@ def load_law(name: str, folder: str | Path | None = None) -> LawKernels:
         law = fricgen.load_law("stribeck", folder="laws")   # laws/stribeck.toml, kernels in laws/generated/
         Simulation(config, particles, state, law=law)
 
-    ``folder``: the user's law folder that holds LAW.toml (its kernels generated into
-    ``folder/generated/`` by ``fricgen generate --laws folder``); None looks the name up in the folders
-    of ``FRICGEN_LAWS``, then in the built-in catalogue. KernelError if the law is unknown, its kernels
-    missing or stale (with the command that regenerates them)."""
-    if folder is not None:
-        try:
-            folder = law_folder(folder, "load_law's folder")
-        except CatalogueError as error:
-            raise KernelError(str(error)) from error
-    return load_law_kernels(name, folder)
+    The notebook's edge of the law search: ``folder`` is the user's law folder that holds LAW.toml
+    (its kernels generated into ``folder/generated/`` by ``fricgen generate --laws folder``); None
+    looks the name up in the folders of ``FRICGEN_LAWS``, then in the built-in catalogue. KernelError
+    if the law is unknown, its kernels missing or stale (with the command that regenerates them)."""
+    try:
+        search = LawSearch.of(folder, named_by="load_law's folder") if folder is not None else LawSearch.parse(os.environ.get(LAWS_ENV, ""))
+    except CatalogueError as error:
+        raise KernelError(str(error)) from error
+    return load_law_kernels(name, search)
 
 
 def load_potential(name: str) -> ModuleType:
@@ -353,5 +356,4 @@ __all__ = [
     "load_law_kernels",
     "load_potential",
     "no_weight",
-    "user_laws",
 ]

@@ -12,6 +12,10 @@ The physics: docs/physics.md#counter-based-noise.
 
 from __future__ import annotations
 
+import fricgen.compiled  # noqa: F401  (first: sets Numba up before anything imports it)
+
+# isort: split
+
 import math
 
 import numba

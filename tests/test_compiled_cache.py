@@ -1,12 +1,12 @@
 """Numba's cached code of the compiled layers is cleared when any of their sources changed.
 
 Numba checks a cached function only against its own file, yet the cached code holds the compiled
-functions it calls; fricgen.clear_stale_caches closes that gap (README, Layout). Run here on a
+functions it calls; fricgen.compiled.clear_stale_caches closes that gap (README, Layout). Run here on a
 scratch tree, not on the package, whose caches the rest of the suite uses."""
 
 from pathlib import Path
 
-from fricgen import clear_stale_caches
+from fricgen.compiled import clear_stale_caches
 
 SOURCES = ("engine", "rng.py")
 

@@ -1,7 +1,7 @@
 """The architecture, enforced: data flows one way between the layers, and the code stays small.
 
 Layers: fricgen.derive (SymPy) -> fricgen.generated (emitted kernels) -> fricgen's kernel layer
-(kernels, rng, schema, errors) -> the engines (fricgen.langevin, fricgen.rods) -> the application
+(kernels, rng, schema, errors, compiled, accuracy) -> the engines (fricgen.langevin, fricgen.rods) -> the application
 (fricgen.app). Inside fricgen.derive, the stages: law -> noise (derivation and proof) -> backends
 (one per target, sharing the printing and the special functions) -> the driver.
 
@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-KERNEL_LAYER = {"fricgen.kernels", "fricgen.rng", "fricgen.schema", "fricgen.errors"}
+KERNEL_LAYER = {"fricgen.kernels", "fricgen.rng", "fricgen.schema", "fricgen.errors", "fricgen.compiled"}
 ENGINES = ("fricgen.langevin", "fricgen.rods")
 #: What an engine may import from derive: the plain-data modules, no SymPy.
 DERIVE_DATA = {
@@ -216,3 +216,30 @@ def test_modules_stay_small_and_calls_short(path):
         if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef):
             count = len(node.args.posonlyargs) + len(node.args.args) + len(node.args.kwonlyargs)
             assert count <= 10, f"{path.name}: {node.name} takes {count} parameters"
+
+
+#: The names that resolve a law's name into kernels (a look-up on a search path of law folders).
+RESOLVERS = {"load_law", "load_law_kernels", "LawSearch", "environment_search"}
+
+
+@pytest.mark.parametrize("path", _files(*ENGINES), ids=lambda p: str(p.relative_to(ROOT)))
+def test_engines_import_no_resolver(path):
+    """An engine takes resolved laws (kernels, a ContactLaw) and looks no name up: it imports none of
+    the names that resolve one."""
+    tree = ast.parse(path.read_text())
+    imported = {alias.name for node in ast.walk(tree) if isinstance(node, ast.ImportFrom) for alias in node.names}
+    assert not imported & RESOLVERS, f"{path.name} imports {sorted(imported & RESOLVERS)}"
+
+
+#: Where FRICGEN_LAWS may be read: the command line's edge and the notebook's (fricgen.load_law).
+LAW_EDGES = {ROOT / "fricgen" / "app" / "cli" / "laws.py", ROOT / "fricgen" / "kernels.py"}
+
+
+@pytest.mark.parametrize("path", _files("fricgen", "fricgen.derive"), ids=lambda p: str(p.relative_to(ROOT)))
+def test_no_ambient_law_state(path):
+    """Law folders travel as a value (LawSearch) handed on from an edge: no context variable holds
+    them, and the environment variable is read at the edges alone."""
+    text = path.read_text()
+    assert "ContextVar" not in text
+    if path not in LAW_EDGES:
+        assert "os.environ.get(LAWS_ENV" not in text and 'environ.get("FRICGEN_LAWS"' not in text, path.name

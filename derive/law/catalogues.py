@@ -1,10 +1,12 @@
 """Where laws come from: the catalogues (folders of law files) that a law's name is looked up in.
 
-The search path is the user's law folders, then the built-in catalogue derive/law/catalogue/. User
-folders come from :func:`user_laws` blocks (``fricgen ... --laws DIR``, a run configuration's
-``law.folder``) and from the environment variable ``FRICGEN_LAWS`` (one folder, or several joined
-by os.pathsep), read at every look-up. A name is unique on the path: a user law may not take the
-name of a built-in law or of a law in another user folder (:class:`CatalogueError` names both files).
+The search path (:class:`LawSearch`) is the user's law folders, then the built-in catalogue
+derive/law/catalogue/. It is a value built at the edge from what the user named: ``fricgen ...
+--laws DIR``, the environment variable ``FRICGEN_LAWS`` (one folder, or several joined by
+os.pathsep; read by the command line and by ``fricgen.load_law``, never here), a run
+configuration's ``law.folder``, a notebook's folder. A name is unique on the path: a user law may
+not take the name of a built-in law or of a law in another user folder (:class:`CatalogueError`
+names both files).
 
 The kernels of a catalogue's laws live beside it (:func:`kernel_folder`): the built-in catalogue's
 in the package's generated/, those of a user folder DIR in DIR/generated/, a package of the same
@@ -14,14 +16,13 @@ the runtime's kernel loader uses this module.
 
 from __future__ import annotations
 
-import contextlib
 import importlib.resources
 import json
 import os
 import re
 import shlex
-from collections.abc import Iterator, Sequence
-from contextvars import ContextVar
+from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import DeriveError
@@ -33,7 +34,6 @@ LAWS_ENV = "FRICGEN_LAWS"
 #: repository's generated/ in a source checkout (an editable install), or the installed package's.
 GENERATED = Path(str(importlib.resources.files("fricgen.generated")))
 _BUILT_IN = CATALOGUE.resolve()
-_ACTIVE: ContextVar[tuple[Path, ...]] = ContextVar("fricgen_user_laws", default=())
 
 
 class CatalogueError(DeriveError, LookupError):
@@ -110,29 +110,6 @@ def inert(text: str) -> str:
     return quoted.replace("/", "\\/").replace("?", "\\u003f").replace("\x7f", "\\u007f")
 
 
-def user_laws(*folders: str | Path) -> contextlib.AbstractContextManager[tuple[Path, ...]]:
-    """A ``with`` block in which the law folders ``folders`` are searched first (then those of outer
-    blocks, FRICGEN_LAWS's and the built-in catalogue). The folders are checked now: CatalogueError
-    if one is not there."""
-    return _searched(tuple(law_folder(folder) for folder in folders))
-
-
-@contextlib.contextmanager
-def _searched(folders: tuple[Path, ...]) -> Iterator[tuple[Path, ...]]:
-    token = _ACTIVE.set(folders + _ACTIVE.get())
-    try:
-        yield folders
-    finally:
-        _ACTIVE.reset(token)
-
-
-def user_folders() -> tuple[Path, ...]:
-    """The user law folders in search order: those of :func:`user_laws` blocks, then FRICGEN_LAWS's."""
-    named = os.environ.get(LAWS_ENV, "").split(os.pathsep)
-    found = [*_ACTIVE.get(), *(law_folder(text, LAWS_ENV) for text in named if text.strip())]
-    return tuple(folder for folder in dict.fromkeys(found) if folder != _BUILT_IN)
-
-
 def law_names(catalogue: str | Path) -> list[str]:
     """The names of the laws in a catalogue folder (its LAW.toml files), sorted."""
     return sorted(path.stem for path in Path(catalogue).glob("*.toml") if path.stem.isidentifier())
@@ -159,55 +136,102 @@ def check_law_files(catalogue: str | Path) -> list[str]:
     return names
 
 
-def find_law(name: str, catalogue: str | Path | None = None) -> Path:
-    """The law file of ``name``: in ``catalogue`` if given, else on the search path. CatalogueError if
-    no catalogue has it, or two do, or its NAME.toml is not a regular file (a FIFO, a folder, a
-    dangling symbolic link: said as such)."""
-    if catalogue is None:
-        folders = (*user_folders(), CATALOGUE)
-    else:
-        folders = (CATALOGUE if is_built_in(catalogue) else law_folder(catalogue),)
-    candidates = [folder / f"{name}.toml" for folder in folders if name.isidentifier()]
-    for path in candidates:
-        kind = file_kind(path)
-        if kind not in ("a regular file", "missing"):
-            raise CatalogueError(f"law {name!r}: {inert(str(path))} is {kind}, not a law file: a law file is a TOML text file, NAME.toml")
-    found = [path for path in candidates if path.is_file()]
-    if len(found) > 1:
-        raise CatalogueError(
-            f"law {name!r} is in two catalogues, {found[0]} and {found[1]}: a name must be unique "
-            "(a user law may not take the name of a built-in law or of a law in another user folder); rename one"
-        )
-    if not found and not name.isidentifier():
-        better = re.sub(r"\W", "_", name, flags=re.ASCII)
-        raise CatalogueError(
-            f"unknown law {inert(name)}: a law's name is an identifier (letters, digits, underscores), and so is the name of its file"
-            f" NAME.toml; a file {inert(name)}.toml is not read as a law: rename it {inert(better)}.toml (and its name)"
-        )
-    if not found:
-        available = sorted({law for folder in folders for law in law_names(folder)})
-        raise CatalogueError(f"unknown law {name!r}: no law {name!r} in {' or '.join(map(str, folders))}; choose from {available}")
-    return found[0]
+@dataclass(frozen=True)
+class LawSearch:
+    """Where law names are looked up: the user's law folders in order, then the built-in catalogue.
+
+    One value, built at the edge (the command line's ``--laws`` and ``FRICGEN_LAWS``, a notebook's
+    folder, a run file's ``law.folder``) and handed to whatever resolves a name; no look-up reads
+    the environment. A name is unique on the path: a user law may not take the name of a built-in
+    law or of a law in another user folder.
+
+    ``folders``: absolute paths of existing folders (use :meth:`of`, which checks them).
+    ``built_in``: whether the built-in catalogue ends the path (False: the folders alone, as
+    ``load_law_kernels(name, LawSearch.only(folder))``).
+    """
+
+    folders: tuple[Path, ...] = ()
+    built_in: bool = True
+
+    @classmethod
+    def of(cls, *folders: str | Path, named_by: str = "") -> LawSearch:
+        """The search of ``folders`` (each checked: CatalogueError saying who named it), then the built-in catalogue."""
+        found = (law_folder(folder, named_by) for folder in folders)
+        return cls(tuple(folder for folder in dict.fromkeys(found) if folder != _BUILT_IN))
+
+    @classmethod
+    def parse(cls, text: str, named_by: str = LAWS_ENV) -> LawSearch:
+        """The search of the folders in ``text``, joined by os.pathsep as in ``FRICGEN_LAWS`` (empty
+        entries, and line ends and tabs around an entry, as a shell's ``$(...)`` or an editor leaves
+        them, ignored)."""
+        return cls.of(*(part.strip("\r\n\t") for part in text.split(os.pathsep) if part.strip()), named_by=named_by)
+
+    @classmethod
+    def only(cls, catalogue: str | Path) -> LawSearch:
+        """The search of one catalogue folder alone (the built-in catalogue if it is that one)."""
+        return cls() if is_built_in(catalogue) else cls((law_folder(catalogue),), built_in=False)
+
+    def then(self, other: LawSearch) -> LawSearch:
+        """This search's folders first, then ``other``'s (duplicates dropped)."""
+        folders = tuple(dict.fromkeys((*self.folders, *other.folders)))
+        return LawSearch(folders, self.built_in and other.built_in)
+
+    @property
+    def catalogues(self) -> tuple[Path, ...]:
+        """The folders searched, in order, the built-in catalogue last where it is searched."""
+        return (*self.folders, CATALOGUE) if self.built_in else self.folders
+
+    def find(self, name: str) -> Path:
+        """The law file of ``name``. CatalogueError if no catalogue has it, or two do, or its NAME.toml
+        is not a regular file (a FIFO, a folder, a dangling symbolic link: said as such)."""
+        folders = self.catalogues
+        candidates = [folder / f"{name}.toml" for folder in folders if name.isidentifier()]
+        for path in candidates:
+            kind = file_kind(path)
+            if kind not in ("a regular file", "missing"):
+                problem = f"law {name!r}: {inert(str(path))} is {kind}, not a law file"
+                raise CatalogueError(f"{problem}: a law file is a TOML text file, NAME.toml")
+        found = [path for path in candidates if path.is_file()]
+        if len(found) > 1:
+            raise CatalogueError(
+                f"law {name!r} is in two catalogues, {found[0]} and {found[1]}: a name must be unique "
+                "(a user law may not take the name of a built-in law or of a law in another user folder); rename one"
+            )
+        if not found and not name.isidentifier():
+            better = re.sub(r"\W", "_", name, flags=re.ASCII)
+            raise CatalogueError(
+                f"unknown law {inert(name)}: a law's name is an identifier (letters, digits, underscores), and so is the name of its"
+                f" file NAME.toml; a file {inert(name)}.toml is not read as a law: rename it {inert(better)}.toml (and its name)"
+            )
+        if not found:
+            available = sorted({law for folder in folders for law in law_names(folder)})
+            raise CatalogueError(
+                f"unknown law {name!r}: no law {name!r} in {' or '.join(map(str, folders))}; choose from {available}, or add the folder"
+                f" of your law files with --laws DIR (or {LAWS_ENV})"
+            )
+        return found[0]
+
+    def by_catalogue(self, names: Sequence[str] = ()) -> dict[Path, list[str]]:
+        """The named laws, each found on this path, by catalogue. Without names: every law of the user
+        folders, or of the built-in catalogue when there are none (CatalogueError for a clash)."""
+        if not names:
+            names = [law for folder in self.folders for law in check_law_files(folder)] if self.folders else law_names(CATALOGUE)
+        grouped: dict[Path, list[str]] = {}
+        for name in dict.fromkeys(names):
+            grouped.setdefault(self.find(name).parent, []).append(name)
+        return grouped
 
 
-def laws_by_catalogue(names: Sequence[str] = ()) -> dict[Path, list[str]]:
-    """The named laws, each found on the search path, by catalogue. Without names: every law of the
-    user folders, or of the built-in catalogue when there are none (CatalogueError for a clash)."""
-    if not names:
-        folders = user_folders()
-        names = [law for folder in folders for law in check_law_files(folder)] if folders else law_names(CATALOGUE)
-    grouped: dict[Path, list[str]] = {}
-    for name in dict.fromkeys(names):
-        grouped.setdefault(find_law(name).parent, []).append(name)
-    return grouped
-
+#: The search of the built-in catalogue alone (no user folder).
+BUILT_IN = LawSearch()
 
 __all__ = [
+    "BUILT_IN",
     "GENERATED",
     "LAWS_ENV",
     "CatalogueError",
+    "LawSearch",
     "check_law_files",
-    "find_law",
     "generate_command",
     "inert",
     "is_built_in",
@@ -216,7 +240,4 @@ __all__ = [
     "law_names",
     "shell_word",
     "source_checkout",
-    "laws_by_catalogue",
-    "user_folders",
-    "user_laws",
 ]

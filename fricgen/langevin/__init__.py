@@ -7,21 +7,26 @@ Public API::
     particles = Particles.spheres(256)
     state = lattice_state(particles, dim=2, fraction=0.6, seed=1)
     config = LangevinConfig(law=Law("coulomb_newton", calculus="ito"), thermostat=Thermostat(dt=1e-3), seed=1)
-    Simulation(config, particles, state).run(20_000, every=100, observers=[Sampler(particles)])
+    law = fricgen.load_law("coulomb_newton")  # resolved once: the engine takes kernels, never a name
+    Simulation(config, particles, state, law).run(20_000, every=100, observers=[Sampler(particles)])
 
 Modules: ``config`` (what to simulate), ``system`` (particles, states, initial configurations,
-walls), ``simulation`` (the run loop), ``integrator``, ``pairs``, ``neighbors`` and ``records``
+walls), ``contact_law`` (a ``[law]`` section's kernels, checked once), ``simulation`` (the run loop), ``integrator``, ``pairs``, ``neighbors`` and ``records``
 (the compiled step), ``analysis`` (T_eff, histograms, KL), ``trajectory`` (GSD, checkpoints); the
 statistical test of a law's thermostat is a study, fricgen.app.thermostat_check. Imports only the
 kernel layer, the RNG, fricgen.schema/errors and fricgen.derive.calculus: never SymPy, the rods
 engine or the application.
 """
 
+import fricgen.compiled  # noqa: F401  (first: sets Numba up before anything imports it)
+
+# isort: split
+
 from .analysis import Estimate, Sampler, block_estimate, kl_divergence, maxwell_boltzmann, scaled_components, temperatures, velocity_profile
 from .config import Active, Bulk, LangevinConfig, Law, Thermostat
 from .simulation import Simulation
 from .system import Particles, State, add_slab_walls, lattice_state, packing_box, thermal_state
-from .trajectory import GSDWriter, load_checkpoint, save_checkpoint
+from .trajectory import GSDWriter, checkpoint_config, load_checkpoint, save_checkpoint
 
 __all__ = [
     "Active",
@@ -39,6 +44,7 @@ __all__ = [
     "block_estimate",
     "kl_divergence",
     "lattice_state",
+    "checkpoint_config",
     "load_checkpoint",
     "maxwell_boltzmann",
     "packing_box",

@@ -1,7 +1,7 @@
 """A Langevin simulation of frictional spheres: a configuration on a state, advanced in chunks.
 
-The contact law's kernels come from the loader (fricgen.kernels), handed in or looked up by name; the contact is integrated in
-the calculus its noise amplitude D was derived for, pairwise or explicitly (fricgen.langevin.config.Law).
+The contact law comes resolved (:mod:`fricgen.langevin.contact_law`: kernels, never a name); the contact is integrated
+in the calculus its noise amplitude D was derived for, pairwise or explicitly (fricgen.langevin.config.Law).
 """
 
 from __future__ import annotations
@@ -14,9 +14,10 @@ import numba
 import numpy as np
 
 from ..errors import ConfigError, SimulationError
-from ..kernels import LawKernels, load_law_kernels, load_potential, no_weight
+from ..kernels import LawKernels, load_potential, no_weight
 from . import integrator
-from .config import LangevinConfig, Law
+from .config import LangevinConfig
+from .contact_law import ContactLaw, ModeLaw, bind
 from .records import Bodies, Couplings, Dynamics, Motion, NeighborList
 from .system import Particles, State
 from .threads import ThreadChoice
@@ -58,10 +59,6 @@ def pair_mobilities(particles: Particles, limit: int = TABLES) -> np.ndarray:
     return np.array(found)
 
 
-#: The contact modes, in the order the engine updates them (docs/physics-modes.md).
-MODES = ("sliding", "rolling", "spinning")
-
-
 def mode_mobilities(particles: Particles, mode: str, limit: int = TABLES) -> np.ndarray:
     """As :func:`pair_mobilities`, for the rolling and spinning modes: mu_m = R_eff^2 (1/I_i + 1/I_k),
     R_eff = R_i R_k / (R_i + R_k), bit for bit as fricgen.langevin.contact_step.update_rolling computes it."""
@@ -80,38 +77,6 @@ def mode_mobilities(particles: Particles, mode: str, limit: int = TABLES) -> np.
     return np.array(found)
 
 
-def mode_laws(law: Law, kernels: Sequence[LawKernels], dim: int) -> dict[str, tuple[LawKernels, dict[str, float], str]]:
-    """The laws of a pair's contact modes: {mode: (kernels, parameter overrides, config key)} from the
-    ``[law]`` section and the kernels of its laws (``name``, then ``rolling``, ``spinning`` where given, in
-    that order). ConfigError, naming the key, for a law on another mode than its key says, two laws on
-    one mode, a mode the ``dim``-D pair does not have (spinning in 2-D), or a calculus a rolling or
-    spinning law lacks."""
-    keys = [
-        ("name", law.parameters, None),
-        ("rolling", law.rolling_parameters, "rolling"),
-        ("spinning", law.spinning_parameters, "spinning"),
-    ]
-    named = [(key, params, mode) for key, params, mode in keys if key == "name" or getattr(law, key) is not None]
-    found: dict[str, tuple[LawKernels, dict[str, float], str]] = {}
-    for (key, params, mode), kernel in zip(named, kernels, strict=True):
-        acts = kernel.mode
-        if mode is not None and acts != mode:
-            raise ConfigError(
-                f"law.{key}", f"law {kernel.name} acts on the {acts} mode, not {mode}", f'name a law whose file says mode = "{mode}"'
-            )
-        if acts in found:
-            other = found[acts][2]
-            raise ConfigError(f"law.{key}", f"a second law for the {acts} mode ({other} names {found[acts][0].name})", "one law per mode")
-        if acts == "spinning" and dim == 2:
-            raise ConfigError(f"law.{key}", f"law {kernel.name} acts on spinning, which does not exist in 2-D", "remove it, or run in 3-D")
-        if key != "name" and law.calculus not in kernel.calculi:  # law.name's: KernelError where its kernels are taken
-            raise ConfigError(
-                f"law.{key}", f"law {kernel.name} has no {law.calculus!r} noise", f"choose a calculus of {list(kernel.calculi)}"
-            )
-        found[acts] = (kernel, dict(params), f"law.{key}")
-    return found
-
-
 class Simulation:
     """Runs a configuration on a state (in place); ``run`` calls observers between chunks.
 
@@ -121,57 +86,52 @@ class Simulation:
     when it no longer holds for the state (fricgen.langevin.neighbors.still_valid), so a state
     changed between calls is safe.
 
-    ``law``: the law's kernels, resolved once by the caller (:func:`fricgen.load_law`, for a law of a
-    folder of one's own), or a sequence of them for ``config.law.name``, ``rolling`` and ``spinning``
-    (those given, in this order); by default the names are looked up when the simulation is created
-    (FRICGEN_LAWS's folders, then the built-in catalogue). Each law acts on the contact mode its file
-    names (:func:`mode_laws`; docs/physics-modes.md)."""
+    ``law``: the resolved contact law: a :class:`~fricgen.langevin.contact_law.ContactLaw` (an edge's
+    resolution of ``config.law``), or the kernels of ``config.law.name`` (:func:`fricgen.load_law`), or a
+    sequence of them for ``name``, ``rolling`` and ``spinning`` (those given, in this order), which are
+    checked here against ``config.law`` (:func:`~fricgen.langevin.contact_law.bind`). Never a name: the
+    engine looks nothing up. Each law acts on the contact mode its file names (docs/physics-modes.md)."""
 
     threads: int | None = None
 
-    def __init__(self, config: LangevinConfig, particles: Particles, state: State, law: LawKernels | Sequence[LawKernels] | None = None):
+    def __init__(self, config: LangevinConfig, particles: Particles, state: State, law: ContactLaw | LawKernels | Sequence[LawKernels]):
         self.config, self.particles, self.state = config, particles, state
-        names = [config.law.name, *(n for n in (config.law.rolling, config.law.spinning) if n is not None)]
-        handed = [law] if isinstance(law, LawKernels) else list(law) if law is not None else [load_law_kernels(n) for n in names]
-        law = config.law
-        if [k.name for k in handed] != names:
-            if len(names) == len(handed) == 1:
-                given = f"is {names[0]!r}, but the kernels handed to the simulation are those of {handed[0].name!r}"
-            else:
-                given = f"names the laws {names}, but the kernels handed to the simulation are those of {[k.name for k in handed]}"
-            raise ConfigError("law.name", given, "give one law per name")
-        self.kernels, self.laws = handed[0], tuple(handed)
-        self.modes = mode_laws(law, handed, state.dim)
-        self.contact = self.kernels.contact(law.calculus)  # raises for a calculus the law does not have
+        self.law = _contact_law(config, law, state.dim)
+        first = self.law.first
+        self.kernels = first.kernels
+        self.contact = self.kernels.contact(self.law.calculus)
         self.potential = load_potential(config.potential)
-        values = self._values(self.kernels, law.parameters, "law.name", self.kernels.mode)
+        extra = {mode: self.law.modes.get(mode) for mode in ("rolling", "spinning")}
+        laws = {mode: (self._values(found, mode) if found else np.zeros(0)) for mode, found in extra.items()}
         sliding = self.kernels.mode == "sliding"
-        extra = {mode: self.modes.get(mode) for mode in ("rolling", "spinning")}
-        laws = {mode: (self._values(*found, mode) if found else np.zeros(0)) for mode, found in extra.items()}
-        weights = {mode: bool(found and found[0].has_weight) for mode, found in extra.items()}
         self.couplings = Couplings(
-            np.array([config.epsilon, 1.0]), values, self.kernels.has_weight and sliding, sliding, extra["rolling"] is not None,
-            extra["spinning"] is not None, laws["rolling"], laws["spinning"], weights["rolling"], weights["spinning"],
-            config.law.rolling_noise, config.law.spinning_noise,
-        )  # fmt: skip
+            potential=np.array([config.epsilon, 1.0]),
+            law=self._values(first, self.kernels.mode),
+            has_weight=self.kernels.has_weight and sliding,
+            sliding=sliding,
+            rolling=extra["rolling"] is not None,
+            spinning=extra["spinning"] is not None,
+            rolling_law=laws["rolling"],
+            spinning_law=laws["spinning"],
+            rolling_weight=bool(extra["rolling"] and extra["rolling"].kernels.has_weight),
+            spinning_weight=bool(extra["spinning"] and extra["spinning"].kernels.has_weight),
+            rolling_noise=config.law.rolling_noise,
+            spinning_noise=config.law.spinning_noise,
+        )
         self.neighbor_list, self.neighbor_builds = NeighborList.unbuilt(), 0  # the list is kept while valid
         self.tally = ContactTally(0, 0, 0.0)
         self.thread_choice = ThreadChoice(numba.get_num_threads())
         if state.dim == 2 and (state.position[:, 2].any() or config.bulk.vector[2]):
             raise ConfigError("bulk.force", "2-D states have z = 0 and no bulk force along z", "give [Fx, Fy]")
 
-    def _values(self, kernels: LawKernels, overrides: dict[str, float], key: str, mode: str) -> np.ndarray:
-        """A law's parameter values for the engine: the overrides, sigma and epsilon where the law has them, the
-        noise tables of an integral-form D for the mode's most common mobilities. ``key``: the law's in [law]."""
+    def _values(self, law: ModeLaw, mode: str) -> np.ndarray:
+        """A law's parameter values for the engine: its overrides, sigma and epsilon where the law has them, the
+        noise tables of an integral-form D for the mode's most common mobilities."""
+        kernels = law.kernels
         fixed = {"sigma": 1.0, "epsilon": self.config.epsilon}  # the engine scales distances by sigma_ik = R_i + R_k
-        params = dict(overrides) | {name: value for name, value in fixed.items() if name in kernels.parameter_names}
-        try:
-            values = kernels.parameters(**params)
-        except ConfigError as error:
-            if key == "law.name":
-                raise
-            raise ConfigError(error.key.replace("law.parameters", f"{key}_parameters", 1), error.problem, error.fix) from None
-        tabulate = getattr(kernels.module, f"tabulate_{self.config.law.calculus}", None)  # noise tables of an integral-form D
+        engine = {name: value for name, value in fixed.items() if name in kernels.parameter_names}
+        values = kernels.parameters(**(dict(law.parameters) | engine))
+        tabulate = getattr(kernels.module, f"tabulate_{self.law.calculus}", None)  # noise tables of an integral-form D
         if tabulate is not None:
             values = tabulate(mode_mobilities(self.particles, mode), self.config.thermostat.kT, values)
         return values
@@ -179,9 +139,9 @@ class Simulation:
     def mode_kernels(self) -> tuple:
         """The rolling and spinning laws' kernels, (contact, slope, weight) of each as records.MODE_KERNELS; the
         sliding slot's where a mode has no law (the couplings say which act)."""
-        calculus, out = self.config.law.calculus, []
+        calculus, modes, out = self.law.calculus, self.law.modes, []
         for mode in ("rolling", "spinning"):
-            kernels = self.modes[mode][0] if mode in self.modes else self.kernels
+            kernels = modes[mode].kernels if mode in modes else self.kernels
             out += [kernels.contact(calculus), kernels.friction_slope, kernels.module.weight if kernels.has_weight else no_weight]
         return tuple(out)
 
@@ -199,9 +159,25 @@ class Simulation:
         """The step parameters of the compiled engine."""
         c, s, t = self.config, self.state, self.config.thermostat
         inv_box = np.array([1.0 / s.box[a] if a < s.dim else 0.0 for a in range(3)])
-        return Dynamics(s.box, inv_box, np.array(c.bulk.vector, dtype=float), s.dim, t.dt, t.kT, t.gamma, t.gamma_rot, c.active.force,
-                        c.seed, c.law.integrator.index, c.law.friction, c.law.contact_noise, c.law.contact_scheme == "pairwise",
-                        c.skin, c.overlap_limit, numba.get_num_threads())  # fmt: skip
+        return Dynamics(
+            box=s.box,
+            inv_box=inv_box,
+            bulk=np.array(c.bulk.vector, dtype=float),
+            dims=s.dim,
+            dt=t.dt,
+            kT=t.kT,
+            gamma=t.gamma,
+            gamma_rot=t.gamma_rot,
+            active=c.active.force,
+            seed=c.seed,
+            scheme=c.law.integrator.index,
+            friction=c.law.friction,
+            noise=c.law.contact_noise,
+            pairwise=c.law.contact_scheme == "pairwise",
+            skin=c.skin,
+            overlap_limit=c.overlap_limit,
+            threads=numba.get_num_threads(),
+        )
 
     def advance(self, steps: int) -> None:
         """Advance by ``steps`` compiled steps; raises SimulationError if the run blows up."""
@@ -260,3 +236,20 @@ class Simulation:
             done += chunk
             for observe in observers:
                 observe(self)
+
+
+def _contact_law(config: LangevinConfig, law: object, dim: int) -> ContactLaw:
+    """The simulation's contact law: ``law`` as it is when it was resolved for ``config.law`` (the same
+    names and calculus), else bound from kernels; TypeError, on one line, for anything else (a name)."""
+    if isinstance(law, ContactLaw):
+        names = [config.law.name, *(n for n in (config.law.rolling, config.law.spinning) if n is not None)]
+        if law.names != names or law.calculus != config.law.calculus:
+            given = f"the contact law handed to the simulation is {law.names} ({law.calculus}), not {names} ({config.law.calculus})"
+            raise ConfigError("law", given, "resolve it for this configuration")
+        return law
+    kernels = [law] if isinstance(law, LawKernels) else list(law) if isinstance(law, Sequence) and not isinstance(law, str) else None
+    if not kernels or not all(isinstance(k, LawKernels) for k in kernels):
+        raise TypeError(
+            f"Simulation's law must be the resolved law (fricgen.load_law(name), or a ContactLaw), not {law!r}: the engine looks no name up"
+        )
+    return bind(config.law, kernels, dim)

@@ -19,9 +19,10 @@ import gsd.hoomd
 import numpy as np
 
 from ..errors import ConfigError
-from ..kernels import LawKernels, load_law_kernels
+from ..kernels import LawKernels
 from ..schema import structure
 from .config import LangevinConfig
+from .contact_law import ContactLaw
 from .simulation import Simulation
 from .system import Particles, State
 
@@ -115,18 +116,26 @@ def save_checkpoint(path: str | Path, simulation: Simulation) -> Path:
             config=json.dumps(simulation.config.as_dict()),
             law_file=str(simulation.kernels.path or ""),
             law_hash=simulation.kernels.source_hash,
-            **({"mode_laws": _mode_laws(simulation.laws[1:])} if len(simulation.laws) > 1 else {}),
+            **({"mode_laws": json.dumps([law.record() for law in simulation.law.laws[1:]])} if len(simulation.law.laws) > 1 else {}),
         )
     os.replace(temporary, path)
     return path
 
 
-def _mode_laws(laws: Sequence[LawKernels]) -> str:
-    """The rolling and spinning laws of a run as JSON, [[name, law file, hash], ...] (checked on resume)."""
-    return json.dumps([[k.name, str(k.path or ""), k.source_hash] for k in laws])
+def checkpoint_config(path: str | Path) -> LangevinConfig:
+    """The configuration a checkpoint was run with: what an edge resolves the law of before
+    :func:`load_checkpoint` (``config.law`` names the laws)."""
+    with np.load(Path(path)) as data:
+        return _stored_config(data)
 
 
-def load_checkpoint(path: str | Path, law: LawKernels | Sequence[LawKernels] | None = None) -> Simulation:
+def _stored_config(data) -> LangevinConfig:
+    stored = json.loads(str(data["config"]))
+    stored["law"].setdefault("contact_scheme", "explicit")  # written before the pairwise step existed
+    return structure(LangevinConfig, stored, "checkpoint")
+
+
+def load_checkpoint(path: str | Path, law: ContactLaw | LawKernels | Sequence[LawKernels]) -> Simulation:
     """A Simulation that continues exactly where :func:`save_checkpoint` left it.
 
     A checkpoint records the law files it ran (path and hash; those of the rolling and spinning laws
@@ -134,16 +143,14 @@ def load_checkpoint(path: str | Path, law: LawKernels | Sequence[LawKernels] | N
 
     Args:
         path: a file written by :func:`save_checkpoint`.
-        law: the law's kernels (:func:`fricgen.load_law`), or those of each law of ``[law]`` (name,
-            rolling, spinning) as :class:`Simulation` takes them; None looks the stored names up.
+        law: the resolved contact law of the stored configuration, as :class:`Simulation` takes it
+            (a ContactLaw, or the kernels of each law of ``[law]``: name, rolling, spinning).
 
     Returns:
         The simulation at the saved step.
     """
     with np.load(Path(path)) as data:
-        stored = json.loads(str(data["config"]))
-        stored["law"].setdefault("contact_scheme", "explicit")  # written before the pairwise step existed
-        config = structure(LangevinConfig, stored, "checkpoint")
+        config = _stored_config(data)
         particles = Particles(data["radius"], data["mass"], data["inertia"], data["mobile"])
         state = State(
             data["position"].copy(),
@@ -156,8 +163,8 @@ def load_checkpoint(path: str | Path, law: LawKernels | Sequence[LawKernels] | N
         )
         recorded = (str(data["law_file"]), str(data["law_hash"])) if "law_hash" in data.files else None
         modes = json.loads(str(data["mode_laws"])) if "mode_laws" in data.files else []
-    names = [config.law.name, *(n for n in (config.law.rolling, config.law.spinning) if n is not None)]
-    laws = [law] if isinstance(law, LawKernels) else list(law) if law is not None else [load_law_kernels(n) for n in names]
+    simulation = Simulation(config, particles, state, law)
+    laws = [mode_law.kernels for mode_law in simulation.law.laws]
     ran = [*([[config.law.name, *recorded]] if recorded is not None else []), *modes]
     for (name, file, digest), kernels in zip(ran, laws if recorded is not None else laws[1:]):
         if digest != kernels.source_hash:
@@ -167,4 +174,4 @@ def load_checkpoint(path: str | Path, law: LawKernels | Sequence[LawKernels] | N
                 f"the checkpoint ran {file or f'law {name}'} (hash {digest[:12]}), not {given}",
                 "resume with the law file the run started with, or start a new run",
             )
-    return Simulation(config, particles, state, laws)
+    return simulation

@@ -17,6 +17,10 @@ the kernel layer, the RNG and fricgen.schema/errors: never SymPy, the Langevin e
 command line.
 """
 
+import fricgen.compiled  # noqa: F401  (first: sets Numba up before anything imports it)
+
+# isort: split
+
 from .comparison import deviations, exact_profile
 from .config import RodConfig, RodModel, RodNumerics, RodSampling, rod_config
 from .interactions import best_exponent, field_energy, field_kernels, pair_kernels, stability_ratio, sticky_force_max

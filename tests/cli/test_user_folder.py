@@ -10,8 +10,9 @@ from pathlib import Path
 
 import pytest
 
+import fricgen
 from fricgen.app.cli import main
-from fricgen.derive.law.catalogues import GENERATED, CatalogueError, user_laws
+from fricgen.derive.law.catalogues import GENERATED, CatalogueError, LawSearch
 from fricgen.derive.law.lawdata import CATALOGUE
 from fricgen.kernels import KernelError, load_law_kernels
 
@@ -60,17 +61,19 @@ def test_generate_emits_only_the_folders_laws_beside_it(laws, capsys):
 
 
 def test_the_kernels_load_from_the_folder_by_every_route(laws, monkeypatch):
-    direct = load_law_kernels("user_viscous", catalogue=laws)
+    direct = load_law_kernels("user_viscous", LawSearch.only(laws))
     kernel = laws / "generated" / "laws" / "user_viscous.py"  # run from its verified copy in the user's cache (docs/trust-model.md)
     assert Path(direct.module.__file__).read_bytes() == kernel.read_bytes() and Path(direct.module.__file__) != kernel
     assert direct.module.__name__.startswith("fricgen_user_laws_") and direct.module.__name__.endswith(".laws.user_viscous")
-    with user_laws(laws):
-        assert load_law_kernels("user_viscous").module is direct.module
-        assert load_law_kernels("linear").module.__name__ == "fricgen.generated.laws.linear"  # built-in laws stay reachable
+    search = LawSearch.of(laws)
+    assert load_law_kernels("user_viscous", search).module is direct.module
+    assert load_law_kernels("linear", search).module.__name__ == "fricgen.generated.laws.linear"  # built-in laws stay reachable
+    with pytest.raises(KernelError, match="unknown law 'user_viscous'.*--laws DIR"):
+        load_law_kernels("user_viscous")  # the built-in catalogue alone: no search reads FRICGEN_LAWS below the edges
+    monkeypatch.setenv("FRICGEN_LAWS", os.pathsep.join([str(laws), str(laws)]) + "\n")  # a trailing newline, as $(...) leaves
     with pytest.raises(KernelError, match="unknown law 'user_viscous'"):
-        load_law_kernels("user_viscous")  # outside the block, without FRICGEN_LAWS
-    monkeypatch.setenv("FRICGEN_LAWS", os.pathsep.join([str(laws), str(laws)]))
-    kernels = load_law_kernels("user_viscous")
+        load_law_kernels("user_viscous")
+    kernels = fricgen.load_law("user_viscous")  # the notebook's edge reads it
     assert kernels.module is direct.module and kernels.parameter_names == ("gamma_f", "epsilon", "sigma")
     assert kernels.noise_amplitude("ito")(1.0, 3.0, 1.0, 7.0, 1.0, kernels.parameters()) == 6.0  # D = w gamma_f
 
@@ -98,16 +101,16 @@ def test_missing_folders_kernels_and_unknown_laws_are_clear(laws, tmp_path, caps
     assert main(["noise", "--laws", str(missing), "linear", "--u", "1", "--w", "1"]) == 2
     assert re.search(r"--laws: the law folder .*missing does not exist", capsys.readouterr().err)
     with pytest.raises(CatalogueError, match="does not exist"):
-        user_laws(missing)
+        LawSearch.of(missing)
     with pytest.raises(KernelError, match="does not exist"):
-        load_law_kernels("linear", catalogue=missing)
+        fricgen.load_law("linear", folder=missing)
     assert main(["noise", "--laws", str(laws), "nope", "--u", "1", "--w", "1"]) == 2
     assert "LAW: unknown law 'nope'" in capsys.readouterr().err
     fresh = tmp_path / "fresh"
     write_law(fresh, "user_new")
     command = f"fricgen generate --laws {fresh.resolve()} user_new"
     with pytest.raises(KernelError, match=f"no generated kernels for law user_new: run `{re.escape(command)}`"):
-        load_law_kernels("user_new", catalogue=fresh)
+        load_law_kernels("user_new", LawSearch.only(fresh))
     assert main(["noise", "user_new", "--laws", str(fresh), "--u", "1", "--w", "1"]) == 2
     assert command in capsys.readouterr().err
     monkeypatch.setenv("FRICGEN_LAWS", str(missing))
@@ -119,20 +122,20 @@ def test_a_user_law_may_not_take_a_built_in_name(tmp_path, capsys):
     write_law(tmp_path, "linear")
     assert main(["generate", "--laws", str(tmp_path), "linear"]) == 2
     assert "law 'linear' is in two catalogues" in capsys.readouterr().err
-    with user_laws(tmp_path), pytest.raises(KernelError, match="two catalogues"):
-        load_law_kernels("linear")
+    with pytest.raises(KernelError, match="two catalogues"):
+        load_law_kernels("linear", LawSearch.of(tmp_path))
     assert not (tmp_path / "generated").exists()
 
 
 def test_stale_kernels_are_refused_and_reloaded_after_regeneration(laws, tmp_path):
     folder = tmp_path / "laws"
     shutil.copytree(laws, folder, ignore=shutil.ignore_patterns("__pycache__"))
-    assert load_law_kernels("user_viscous", catalogue=folder).parameters()[0] == 2.0
+    assert load_law_kernels("user_viscous", LawSearch.only(folder)).parameters()[0] == 2.0
     write_law(folder, default=3.0)
     with pytest.raises(KernelError, match=f"stale.*run `fricgen generate --laws {re.escape(str(folder.resolve()))} user_viscous`"):
-        load_law_kernels("user_viscous", catalogue=folder)
+        load_law_kernels("user_viscous", LawSearch.only(folder))
     assert main(["generate", "--laws", str(folder), "user_viscous"]) == 0
-    assert load_law_kernels("user_viscous", catalogue=folder).parameters()[0] == 3.0  # the new module, in the same process
+    assert load_law_kernels("user_viscous", LawSearch.only(folder)).parameters()[0] == 3.0  # the new module, in the same process
 
 
 def test_a_run_resumed_with_another_version_of_its_law_is_refused(laws, tmp_path, capsys):

@@ -14,6 +14,7 @@ from fricgen.derive.backends.tables import table_factor
 from fricgen.derive.law.symbols import kT, mu, r, w
 from fricgen.derive.noise.reference import reference_amplitude
 from fricgen.generated.special import table_value
+from fricgen.kernels import load_law_kernels
 from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, Thermostat, lattice_state
 from fricgen.langevin.simulation import pair_mobilities
 
@@ -141,7 +142,7 @@ def test_a_simulation_runs_on_its_tables_and_a_closed_form_law_on_its_parameters
     sims = {}
     for name in ("smooth_coulomb", "coulomb_newton"):
         config = LangevinConfig(law=Law(name), thermostat=Thermostat(kT=1.3, dt=1e-3))
-        sims[name] = Simulation(config, particles, lattice_state(particles, 2, 0.6))
+        sims[name] = Simulation(config, particles, lattice_state(particles, 2, 0.6), load_law_kernels(name))
     values = sims["smooth_coulomb"].couplings.law
     assert values.size > 4 and table_value(0.5, 1.3 * 7.0, values, 4) >= 0.0  # a = kT mu of every pair in the engine
     assert sims["coulomb_newton"].couplings.law.size == len(sims["coulomb_newton"].kernels.parameter_names)

@@ -12,6 +12,7 @@ from pathlib import Path
 import pytest
 
 from fricgen.app.cli.lammps import LammpsError, build_plugin, emit_plugin, locate_lammps, plugin_folder, sources_hash
+from fricgen.derive.law.catalogues import BUILT_IN
 
 BUILD_ROOT = Path(tempfile.gettempdir()) / "fricgen-lammps-tests"
 
@@ -32,9 +33,9 @@ def plugin(lammps):
 
     def get(law: str) -> Path:
         if law not in built:
-            folder = plugin_folder(law)
+            folder = plugin_folder(BUILT_IN.find(law))
             if not folder.is_dir():
-                folder, _ = emit_plugin(law, out=BUILD_ROOT / "sources" / law)
+                folder, _ = emit_plugin(BUILT_IN.find(law), out=BUILD_ROOT / "sources" / law)
             try:
                 built[law] = build_plugin(folder, lammps, BUILD_ROOT / f"{law}-{sources_hash(folder, lammps)[:16]}")
             except LammpsError as error:

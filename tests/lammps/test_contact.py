@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from fricgen.kernels import load_law_kernels
 from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, State, Thermostat
 from fricgen.langevin.neighbors import build_neighbors
 from fricgen.langevin.pairs import PAIR_FIELDS, TERMS, WCA_RANGE, gather, pair_slots
@@ -62,7 +63,7 @@ def engine_forces(law: str, dim: int, noise: bool, coordinates):
     state = State(position.copy(), velocity.copy(), omega.copy(), np.tile([1.0, 0.0, 0.0, 0.0], (n, 1)), box, dim)
     law_section = Law(name=law, calculus="ito", contact_noise=noise, parameters=LAWS[law], contact_scheme="explicit")
     config = LangevinConfig(law=law_section, thermostat=Thermostat(kT=KT, dt=DT), epsilon=EPSILON, seed=SEED)
-    simulation = Simulation(config, particles, state)
+    simulation = Simulation(config, particles, state, load_law_kernels(law))
     dyn = simulation.dynamics()
     lists = build_neighbors(state.position, dyn.box, dim, WCA_RANGE + 0.3)
     slots = np.zeros((lists[1].size, PAIR_FIELDS))

@@ -25,7 +25,7 @@ from fricgen.app.cli.lammps import build_plugin, emit_plugin, ziggurat
 from fricgen.derive.backends.lammps_plugin.code import support
 from fricgen.derive.backends.lammps_plugin.mode_code import STREAMS, ziggurat_support
 from fricgen.derive.driver import generate
-from fricgen.derive.law.catalogues import GENERATED, user_laws
+from fricgen.derive.law.catalogues import GENERATED
 from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, State, Thermostat
 from fricgen.langevin.modes import MODE_FIELDS, gather_modes, mode_slots
 from fricgen.langevin.neighbors import build_neighbors
@@ -66,8 +66,7 @@ def laws(lammps, plugin, tmp_path_factory):
     folder.mkdir()
     (folder / "spinning_soft.toml").write_text(SPINNING_LAW)
     generate(catalogue=folder)
-    with user_laws(folder):
-        sources, _ = emit_plugin("spinning_soft", out=root / "sources")
+    sources, _ = emit_plugin(folder / "spinning_soft.toml", out=root / "sources")
     found = {"spinning_soft": (fricgen.load_law("spinning_soft", folder=folder), build_plugin(sources, lammps, root / "build"))}
     return found | {name: (fricgen.load_law(name), plugin(name)) for name in ("coulomb_newton", "rolling_coulomb_newton")}
 

@@ -35,8 +35,8 @@ def test_a_user_law_runs_in_lammps_under_two_ranks(lammps, tmp_path, capsys):
     parser = Parser(prog="fricgen")
     add_lammps_command(parser.add_subparsers(dest="command"))
     args = parser.parse_args(["lammps", "coulomb_viscous", "--laws", str(folder), "--build", "--build-dir", str(tmp_path / "build")])
-    with laws.law_search(args):
-        assert args.run(args) == 0
+    args.search = laws.law_search(args)
+    assert args.run(args) == 0
     assert "pair_fricgen_coulomb_viscous.cpp" in capsys.readouterr().out
     assert (folder / "generated" / "lammps" / "coulomb_viscous" / "in.coulomb_viscous_2d").is_file()
     plugin = tmp_path / "build" / "fricgen_coulomb_viscous.so"

@@ -4,6 +4,7 @@ import dataclasses
 
 import numpy as np
 
+from fricgen.kernels import load_law_kernels
 from fricgen.langevin import Active, Bulk, LangevinConfig, Law, Particles, Simulation, State, Thermostat, lattice_state
 
 _LAW = {f.name for f in dataclasses.fields(Law)}
@@ -22,7 +23,7 @@ def config(law="coulomb_newton", active_force=0.0, bulk_force=(), **options):
 def passive(law="coulomb_newton", dim=2, n=64, seed=3, law_kernels=None, **options):
     particles = Particles.spheres(n)
     state = lattice_state(particles, dim, 0.6 if dim == 2 else 0.3, seed=seed)
-    return Simulation(config(law, seed=seed, **options), particles, state, law_kernels)
+    return Simulation(config(law, seed=seed, **options), particles, state, law_kernels or load_law_kernels(law))
 
 
 def collision(law, **options):
@@ -33,7 +34,7 @@ def collision(law, **options):
     omega = np.array([[0.0, 0.0, 2 * np.sqrt(30.0)], [0.0, 0.0, 0.0]])
     orientation = np.array([[1.0, 0, 0, 0], [1.0, 0, 0, 0]])
     state = State(position, velocity, omega, orientation, np.array([20.0, 20.0, 20.0]), 3)
-    return Simulation(config(law, gamma=0.0, gamma_rot=0.0, contact_noise=False, **options), particles, state)
+    return Simulation(config(law, gamma=0.0, gamma_rot=0.0, contact_noise=False, **options), particles, state, load_law_kernels(law))
 
 
 def arrays(simulation):

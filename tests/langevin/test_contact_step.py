@@ -165,7 +165,8 @@ def _scaled(contact, factor):
 def test_rejection_rate_falls_fast_for_the_right_D_only():
     """Slopes of log(rejection rate) against log dt, 2-D, N = 64, from one equilibrated configuration."""
     particles = Particles.spheres(64)
-    start = Simulation(config("coulomb_newton", dt=2e-3, seed=5), particles, lattice_state(particles, 2, 0.6, seed=5))
+    law = load_law_kernels("coulomb_newton")
+    start = Simulation(config("coulomb_newton", dt=2e-3, seed=5), particles, lattice_state(particles, 2, 0.6, seed=5), law)
     start.advance(2000)
     steps = np.array([1e-4, 4e-4, 1.6e-3, 6.4e-3])
     variants = {"right": {}, "wrong calculus": {"calculus": "stratonovich", "scheme": "ito", "force_scheme": True}, "D x 1.1": {}}
@@ -173,7 +174,7 @@ def test_rejection_rate_falls_fast_for_the_right_D_only():
     for name, options in variants.items():
         rates[name] = []
         for dt in steps:
-            simulation = Simulation(config("coulomb_newton", dt=dt, seed=7, **options), particles, copy.deepcopy(start.state))
+            simulation = Simulation(config("coulomb_newton", dt=dt, seed=7, **options), particles, copy.deepcopy(start.state), law)
             if name == "D x 1.1":
                 simulation.contact = _scaled(simulation.contact, 1.1)
             simulation.advance(3000)

@@ -3,15 +3,16 @@ folder with ``fricgen.load_law`` and builds a simulation with it, without any co
 environment variable; a checkpoint records the law file it ran, and resuming with another version
 of the law is refused."""
 
-import dataclasses
-
 import numpy as np
 import pytest
 
 import fricgen
 from fricgen.derive.driver import generate
 from fricgen.errors import ConfigError, KernelError
-from fricgen.langevin import load_checkpoint, save_checkpoint
+from fricgen.app.run.build import resolve_law
+from fricgen.derive.law.catalogues import BUILT_IN
+from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, lattice_state, load_checkpoint, save_checkpoint
+from fricgen.langevin.contact_law import ContactLaw
 
 from .helpers import arrays, passive
 
@@ -72,7 +73,23 @@ def test_resuming_with_another_version_of_the_law_is_refused(folder, tmp_path):
         load_checkpoint(checkpoint, law=fricgen.load_law("notebook_viscous", folder=other))
 
 
-def test_a_name_still_resolves_at_construction():
-    simulation = passive("linear", n=16)
-    assert simulation.kernels.name == "linear" and simulation.kernels.path.name == "linear.toml"
-    assert dataclasses.replace(simulation.kernels).source_hash == simulation.kernels.module.SOURCE_HASH
+def test_the_engine_takes_the_resolved_law_never_a_name():
+    """A name is a TypeError on one line (the engine looks nothing up); kernels are bound to the
+    configuration once; an edge's ContactLaw is taken as it is, and refused for another configuration."""
+    particles = Particles.spheres(16)
+    state = lattice_state(particles, 2, 0.6, seed=1)
+    config = LangevinConfig(law=Law("linear"))
+    with pytest.raises(TypeError, match="law must be the resolved law .* not 'linear'") as refused:
+        Simulation(config, particles, state, "linear")
+    assert "\n" not in str(refused.value)
+    law = resolve_law(config.law, 2, BUILT_IN)
+    assert isinstance(law, ContactLaw) and law.names == ["linear"] and law.first.kernels.path.name == "linear.toml"
+    simulation = Simulation(config, particles, state, law)
+    assert simulation.law is law and simulation.kernels.source_hash == simulation.kernels.module.SOURCE_HASH
+    with pytest.raises(ConfigError, match="law: the contact law handed to the simulation is \\['linear'\\] \\(ito\\), not \\['coulomb'\\]"):
+        Simulation(LangevinConfig(law=Law("coulomb")), particles, state, law)
+
+
+def test_a_parameter_out_of_range_is_refused_once_with_its_key():
+    with pytest.raises(ConfigError, match="law.rolling_parameters.gamma_r"):
+        resolve_law(Law("coulomb_newton", rolling="rolling_coulomb_newton", rolling_parameters={"gamma_r": -1.0}), 3, BUILT_IN)

@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 from numba import types
 
-from fricgen.kernels import CONTACT_KERNEL, FRICTION_KERNEL, SCALAR_KERNEL, load_potential
+from fricgen.kernels import CONTACT_KERNEL, FRICTION_KERNEL, SCALAR_KERNEL, load_law_kernels, load_potential
 from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, lattice_state
 from fricgen.langevin.contact_step import _sweep, colour_classes, find_contacts
 from fricgen.langevin.forces import _each_pair_once, _each_particle, conservative_forces
@@ -76,7 +76,8 @@ def loop_bodies(dispatcher, arguments: tuple, kernels: dict[int, types.FunctionT
 def engine():
     """Records and neighbour lists of a small 2-D fluid with contacts, after a few steps."""
     particles = Particles.spheres(64)
-    sim = Simulation(LangevinConfig(law=Law("coulomb_newton")), particles, lattice_state(particles, 2, 0.7, seed=3))
+    law = load_law_kernels("coulomb_newton")
+    sim = Simulation(LangevinConfig(law=Law("coulomb_newton")), particles, lattice_state(particles, 2, 0.7, seed=3), law)
     sim.threads = 1
     sim.advance(200)
     s = sim.state

@@ -13,6 +13,7 @@ import argparse
 import dataclasses
 import sys
 import typing
+import warnings
 
 from fricgen.derive.calculus import CALCULI
 from fricgen.derive.errors import DeriveError
@@ -99,13 +100,14 @@ def _assignment(text: str) -> tuple[str, float]:
 
 def _noise(args: argparse.Namespace) -> int:
     """fricgen noise LAW ...: D(u) through the generated kernels, as JSON."""
+    from ...kernels import load_law_kernels
     from .noise import NoiseQuery, evaluate
 
-    laws.check_law_names([args.law])
-    laws.check_calculus(args.law, args.calculus)
+    laws.check_law_names([args.law], args.search)
+    laws.check_calculus(args.law, args.calculus, args.search)
     query = NoiseQuery(tuple(args.u), args.r, args.w, args.mu, args.kT)
     with named_by_flags({}):
-        result = evaluate(args.law, args.calculus, query, dict(args.param))
+        result = evaluate(load_law_kernels(args.law, args.search), args.calculus, query, dict(args.param))
     if args.json:
         print(dumps(result))
     else:
@@ -138,12 +140,13 @@ CHECK_FLAGS = {
 
 def _thermostat_check(args: argparse.Namespace) -> int:
     """fricgen thermostat-check LAW ...: the statistical test of a law's thermostat, as JSON."""
+    from ..run.build import resolve_law
     from ..studies.thermostat_check import passive_check, passive_run
 
     named = [args.law, *(name for name in (args.rolling, args.spinning) if name is not None)]
-    laws.check_law_names(named)
+    laws.check_law_names(named, args.search)
     for name in named:
-        laws.check_calculus(name, args.calculus)
+        laws.check_calculus(name, args.calculus, args.search)
     options = {"dim": args.dim, "calculus": args.calculus, "contact_scheme": args.contact_scheme, "n": args.n, "phi": args.phi}
     options |= {"dt": args.dt, "kT": args.kT, "rolling": args.rolling, "spinning": args.spinning}
     for mode in ("rolling", "spinning"):
@@ -158,7 +161,7 @@ def _thermostat_check(args: argparse.Namespace) -> int:
             parameters=dict(args.param),
             solvent=not args.no_solvent,
         )
-        result = passive_run(check)[0]
+        result = passive_run(check, resolve_law(check.law, check.dim, args.search))[0]
     if args.json:
         print(dumps(result.as_dict()))
     else:
@@ -189,14 +192,14 @@ def _run(args: argparse.Namespace) -> int:
     """fricgen run CONFIG [--set KEY=VALUE ...] [--steps N] [--out DIR] [--resume CHECKPOINT] [--laws DIR] [--json]."""
     from ..run.runner import execute, plan
 
-    return execute(plan(args.config, args.set, args.steps, args.out, args.resume, args.law_folders), args.json)
+    return execute(plan(args.config, args.set, args.steps, args.out, args.resume, args.search), args.json)
 
 
 def _sweep(args: argparse.Namespace) -> int:
     """fricgen sweep SWEEP [--scheduler ADDRESS] [--workers N] [--out DIR] [--laws DIR] [--json]."""
     from ..sweep.runner import SweepRequest, run_sweep
 
-    return run_sweep(SweepRequest(args.sweep, args.out, args.scheduler, args.workers, tuple(args.law_folders)), args.json)
+    return run_sweep(SweepRequest(args.sweep, args.out, args.scheduler, args.workers, args.search), args.json)
 
 
 def _bcd(args: argparse.Namespace) -> int:
@@ -207,7 +210,8 @@ def _bcd(args: argparse.Namespace) -> int:
     from ..studies.rods import Study, study
 
     values = {name: getattr(args, name) for name in _rod_fields()}
-    with named_by_flags(_rod_flags()):
+    with named_by_flags(_rod_flags()), warnings.catch_warnings():
+        warnings.showwarning = _warning_line
         config = rod_config(**{name: dict(value) if isinstance(value, list) else value for name, value in values.items()})
         summary = study(Study(config, args.time, args.equilibrate, args.extrapolate), Path(args.out), args.force)
     if args.json:
@@ -218,6 +222,11 @@ def _bcd(args: argparse.Namespace) -> int:
             f"chi2/bin = {summary['chi2_per_dof']:.2f} ({summary['steps']} steps, {summary['seconds']:.1f} s); wrote {args.out}/"
         )
     return 0
+
+
+def _warning_line(message, category, filename, lineno, file=None, line=None) -> None:
+    """A warning of ``fricgen bcd`` as one line on stderr (not Python's two, with the source line)."""
+    print(f"fricgen bcd: warning: {' '.join(str(message).split())}", file=sys.stderr)
 
 
 #: What each flag of ``fricgen bcd`` sets, in the rods' units (wavelength = 1, D = 1, kT = 1; time in
@@ -433,8 +442,9 @@ def main(argv: list[str] | None = None) -> int:
     try:
         args = parser().parse_args(words)
         prog = f"fricgen {args.command}"
-        with laws.law_search(args):
-            status = args.run(args)
+        if hasattr(args, "law_folders"):  # a command that takes laws: its search, built here once
+            args.search = laws.law_search(args)
+        status = args.run(args)
         sys.stdout.flush()  # a closed stdout shows here, not in the interpreter's exit
         return status
     except UsageError as error:

@@ -113,27 +113,29 @@ def _tool(name: str) -> str:
 # --- generation ----------------------------------------------------------------------------------
 
 
-def plugin_folder(law: str) -> Path:
-    """generated/lammps/<law>/ beside the kernels of the law's catalogue: a user folder's, or the
-    repository's in a source checkout; for a built-in law of an installed package, which fricgen
-    never writes to, $XDG_CACHE_HOME/fricgen/lammps-sources/<law> (~/.cache by default)."""
-    from fricgen.derive.law.catalogues import find_law, is_built_in, kernel_folder, source_checkout
+def plugin_folder(law_file: Path) -> Path:
+    """generated/lammps/<law>/ beside the kernels of the catalogue of the law file ``law_file`` (a
+    name resolved at the edge): a user folder's, or the repository's in a source checkout; for a
+    built-in law of an installed package, which fricgen never writes to,
+    $XDG_CACHE_HOME/fricgen/lammps-sources/<law> (~/.cache by default)."""
+    from fricgen.derive.law.catalogues import is_built_in, kernel_folder, source_checkout
 
-    catalogue = find_law(law).parent
+    catalogue, law = law_file.parent, law_file.stem
     if is_built_in(catalogue) and not source_checkout():
         return _cache_home() / "fricgen" / "lammps-sources" / law
     return kernel_folder(catalogue) / "lammps" / law
 
 
-def plugin_texts(name: str, calculus: str = "ito") -> dict[str, str]:
-    """Derive and verify ``name`` in ``calculus`` and print its plugin's files (LammpsCalculusError,
-    a DeriveError, for a calculus the pair style cannot integrate), on any contact mode."""
+def plugin_texts(law_file: Path, calculus: str = "ito") -> dict[str, str]:
+    """Derive and verify the law of the file ``law_file`` (a name resolved at the edge) in ``calculus``
+    and print its plugin's files (LammpsCalculusError, a DeriveError, for a calculus the pair style
+    cannot integrate), on any contact mode."""
     from fricgen.derive.backends.lammps_plugin.module import check_calculus, plugin_files
     from fricgen.derive.driver import PLUGIN_MODES, verified_models
-    from fricgen.derive.law.catalogues import find_law, is_built_in
+    from fricgen.derive.law.catalogues import is_built_in
     from fricgen.derive.law.laws import load_law
 
-    path = find_law(name)
+    path, name = law_file, law_file.stem
     law = load_law(path)
     check_calculus(law, calculus)
     models, _ = verified_models(dataclasses.replace(law, calculi=(calculus,)), emitted=PLUGIN_MODES, backend="LAMMPS plugin")
@@ -163,15 +165,16 @@ def _packaged(folder: Path) -> bool:
     return folder.resolve().is_relative_to(GENERATED.resolve())
 
 
-def emit_plugin(name: str, calculus: str = "ito", out: str | Path | None = None) -> tuple[Path, list[tuple[Path, str]]]:
-    """Write the plugin's files into ``out`` (default :func:`plugin_folder`) and record their sha256 in
+def emit_plugin(law_file: Path, calculus: str = "ito", out: str | Path | None = None) -> tuple[Path, list[tuple[Path, str]]]:
+    """Write the plugin's files of the law of ``law_file`` (a name resolved at the edge) into ``out``
+    (default :func:`plugin_folder`) and record their sha256 in
     the user's cache (fricgen.derive.law.manifests; not for the package's own generated/); returns the
     folder and (path, "written" or "unchanged") per file."""
     from fricgen.derive.driver import check_not_foreign, write_if_changed
     from fricgen.derive.law import manifests
 
-    folder = Path(out) if out is not None else plugin_folder(name)
-    texts = plugin_texts(name, calculus)
+    folder = Path(out) if out is not None else plugin_folder(law_file)
+    texts = plugin_texts(law_file, calculus)
     if not _packaged(folder):
         manifests.store()  # somewhere to record them, or nothing is written
     for file, text in texts.items():  # all checked before any is written
@@ -343,7 +346,7 @@ def add_lammps_command(subparsers) -> argparse.ArgumentParser:
 
 def run_lammps(args: argparse.Namespace) -> int:
     """fricgen lammps LAW [--calculus ito] [--out DIR] [--build [--build-dir DIR] [--lammps DIR]] [--laws DIR]."""
-    laws.check_law_names([args.law])
+    laws.check_law_names([args.law], args.search)
     refusal = velocity_verlet_refusal(args.calculus)
     if refusal:
         raise ConfigError("--calculus", refusal)
@@ -357,7 +360,7 @@ def run_lammps(args: argparse.Namespace) -> int:
     from fricgen.derive.backends.lammps_plugin.module import LammpsCalculusError  # SymPy: after the checks of the arguments
 
     try:
-        folder, written = emit_plugin(args.law, args.calculus, args.out)
+        folder, written = emit_plugin(args.search.find(args.law), args.calculus, args.out)
     except LammpsCalculusError as error:
         raise ConfigError("--calculus", str(error)) from error
     for path, status in written:

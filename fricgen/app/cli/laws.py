@@ -8,14 +8,12 @@ A law name is looked up in the user's law folders, then in the built-in catalogu
 from __future__ import annotations
 
 import argparse
-import contextlib
 import os
 import sys
-from collections.abc import Iterator
 from pathlib import Path
 
 from fricgen.derive.calculus import CALCULI
-from fricgen.derive.law.catalogues import LAWS_ENV, CatalogueError, find_law, laws_by_catalogue, user_folders, user_laws
+from fricgen.derive.law.catalogues import LAWS_ENV, CatalogueError, LawSearch
 
 from ...errors import ConfigError
 from ..run.outputs import check_folder, dumps
@@ -31,52 +29,47 @@ def add_laws_flag(command: argparse.ArgumentParser) -> None:
     command.add_argument("--laws", dest="law_folders", action="append", default=[], metavar="DIR", help=LAWS_HELP)
 
 
-@contextlib.contextmanager
-def law_search(args: argparse.Namespace) -> Iterator[None]:
-    """The block in which a command that takes laws looks them up: its ``--laws`` folders first, then
-    FRICGEN_LAWS's and the built-in catalogue; each folder checked (ConfigError at --laws or FRICGEN_LAWS)."""
-    if not hasattr(args, "law_folders"):  # a command without laws (demo, bcd)
-        yield
-        return
+def law_search(args: argparse.Namespace) -> LawSearch:
+    """The command line's law search: the ``--laws`` folders, then FRICGEN_LAWS's, then the built-in
+    catalogue; each folder checked (ConfigError at --laws or FRICGEN_LAWS). The one place the command
+    line reads FRICGEN_LAWS: the search is handed on from here (``args.search``)."""
     try:
-        block = user_laws(*args.law_folders)
+        flags = LawSearch.of(*getattr(args, "law_folders", ()))
     except CatalogueError as error:
         raise ConfigError("--laws", str(error)) from error
-    with block:
-        try:
-            user_folders()
-        except CatalogueError as error:
-            raise ConfigError(LAWS_ENV, str(error)) from error
-        yield
+    try:
+        return flags.then(LawSearch.parse(os.environ.get(LAWS_ENV, "")))
+    except CatalogueError as error:
+        raise ConfigError(LAWS_ENV, str(error)) from error
 
 
-def check_law_names(names: list[str]) -> None:
+def check_law_names(names: list[str], search: LawSearch) -> None:
     """Every name is a law on the search path, and in one catalogue only (ConfigError at LAW otherwise);
     the files are found, not read."""
     for name in names:
         try:
-            find_law(name)
+            search.find(name)
         except CatalogueError as error:
             raise ConfigError("LAW", str(error)) from error
 
 
-def check_calculus(law: str, calculus: str) -> None:
+def check_calculus(law: str, calculus: str, search: LawSearch) -> None:
     """The law's generated kernels exist, are fresh and have the calculus (ConfigError at --calculus)."""
     from ...kernels import load_law_kernels
 
-    calculi = load_law_kernels(law).calculi
+    calculi = load_law_kernels(law, search).calculi
     if calculus not in calculi:
         raise ConfigError("--calculus", f"law {law} has no kernels for the {calculus!r} calculus", f"choose one of {list(calculi)}")
 
 
 def verify(args: argparse.Namespace) -> int:
     """fricgen verify [LAW ...] [--calculus C|all] [--laws DIR] [--json]: derive and verify, exit 1 on failure."""
-    check_law_names(args.laws)
+    check_law_names(args.laws, args.search)
     from fricgen.derive import derive_noise, load_law, verify
 
     named = set(args.laws)
     calculi = CALCULI if args.calculus == "all" else (args.calculus,)
-    laws = [load_law(folder / f"{name}.toml") for folder, names in laws_by_catalogue(args.laws).items() for name in names]
+    laws = [load_law(folder / f"{name}.toml") for folder, names in args.search.by_catalogue(args.laws).items() for name in names]
     jobs = [(law, c) for law in laws for c in calculi if c in law.calculi or law.name in named]  # every law read before any proof
     if not jobs:  # every law skipped: exit 0 would say that something was verified
         raise ConfigError("--calculus", f"no law here has the {args.calculus} calculus: nothing was verified", "name a law to verify it")
@@ -102,12 +95,12 @@ def verify(args: argparse.Namespace) -> int:
 def generate(args: argparse.Namespace) -> int:
     """fricgen generate [LAW ...] [--laws DIR] [--output DIR]: derive, verify and emit kernels (idempotent),
     each law's into the kernel folder of its catalogue."""
-    check_law_names(args.laws)
+    check_law_names(args.laws, args.search)
     if args.output:
         check_folder(Path(args.output), "--output")
     from fricgen.derive.driver import generate
 
-    groups = laws_by_catalogue(args.laws)
+    groups = args.search.by_catalogue(args.laws)
     if args.output and len(groups) > 1:
         raise ConfigError("--output", f"the laws come from {len(groups)} catalogues ({', '.join(map(str, groups))})", "name one's laws")
     for folder, names in groups.items():

@@ -15,7 +15,7 @@ import sys
 from dataclasses import dataclass, field
 
 from ...errors import ConfigError
-from ...kernels import load_law_kernels
+from ...kernels import LawKernels
 from ...schema import Section
 
 #: Smallest magnitude of a law parameter of ``fricgen noise`` besides 0: a product of two stays a
@@ -48,9 +48,9 @@ class NoiseQuery(Section):
         self.require_scale("mu", "kT")
 
 
-def evaluate(law: str, calculus: str, query: NoiseQuery, parameters: dict[str, float]) -> dict:
-    """D and f at each speed, with the contact (w, r, mu, kT) and the law's parameters."""
-    kernels = load_law_kernels(law)
+def evaluate(kernels: LawKernels, calculus: str, query: NoiseQuery, parameters: dict[str, float]) -> dict:
+    """D and f at each speed of the law ``kernels``, with the contact (w, r, mu, kT) and the law's parameters."""
+    law = kernels.name
     params = kernels.parameters(**parameters)
     for name, value in parameters.items():
         if 0 < abs(value) < SMALLEST_PARAMETER:

@@ -1,8 +1,8 @@
 """From a validated run configuration to a simulation at step 0: the law and its kernels, the
 particles, the initial state (lattice or random, in the box or in the slab between walls), walls.
 
-The law's name is resolved here, once (:func:`resolve_law`: the run's law folders, FRICGEN_LAWS's,
-then the built-in catalogue), and the engine is handed the kernels. Each failure is a
+The law's names are resolved here, once (:func:`resolve_law`: the law search handed in by the edge,
+with the configuration's ``law.folder``), into the checked contact law the engine is handed. Each failure is a
 :class:`~fricgen.errors.ConfigError` naming the key, raised before any file is written.
 :func:`check` makes the checks of :func:`build` that need no particles (a sweep checks its points
 with it).
@@ -11,14 +11,17 @@ with it).
 from __future__ import annotations
 
 import functools
-from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 
+from fricgen.derive.law.catalogues import BUILT_IN, CatalogueError, LawSearch
+
 from ...errors import ConfigError, KernelError
-from ...kernels import LawKernels, load_law_kernels, user_laws
-from ...langevin.simulation import Simulation, mode_laws
+from ...kernels import load_law_kernels
+from ...langevin.config import Law
+from ...langevin.contact_law import LAW_KEYS, ContactLaw, bind
+from ...langevin.simulation import Simulation
 from ...langevin.system import (
     Particles,
     State,
@@ -31,44 +34,34 @@ from ...langevin.system import (
     thermal_state,
 )
 from .checkpoints import check_checkpoint
-from .config import RunConfig, check_fraction, slab_half_height
+from .config import RunConfig, RunLaw, check_fraction, slab_half_height
 
 
-def resolve_law(c: RunConfig, laws: Sequence[str] = ()) -> list[LawKernels]:
-    """The kernels of the run's laws (``law.name``, then ``law.rolling`` and ``law.spinning`` where given),
-    looked up in the law folders ``laws`` (``--laws``) and the configuration's ``law.folder``, then
-    FRICGEN_LAWS's, then the built-in catalogue; checked: fresh, with the calculus and the parameters,
-    one law per contact mode, each on a mode the dimension has (:func:`fricgen.langevin.simulation.mode_laws`).
-    ConfigError naming the key otherwise."""
+def resolve_law(section: Law, dim: int, search: LawSearch = BUILT_IN) -> ContactLaw:
+    """The contact law of a ``[law]`` section for ``dim``-D pairs: the kernels of its laws (``name``,
+    then ``rolling`` and ``spinning`` where given) looked up in ``search`` (the edge's: ``--laws``,
+    FRICGEN_LAWS) and then in a run's ``law.folder``, loaded fresh, and checked once
+    (:func:`fricgen.langevin.contact_law.bind`). ConfigError naming the key otherwise."""
+    if isinstance(section, RunLaw):
+        try:
+            search = search.then(LawSearch.of(*section.folders, named_by="law.folder"))
+        except CatalogueError as error:
+            raise ConfigError("law.folder", str(error)) from error
     found = []
-    for key, name, parameters in (
-        ("name", c.law.name, c.law.parameters),
-        ("rolling", c.law.rolling, c.law.rolling_parameters),
-        ("spinning", c.law.spinning, c.law.spinning_parameters),
-    ):
+    for key, _, _ in LAW_KEYS:
+        name = getattr(section, key)
         if name is None:
             continue
         try:
-            with user_laws(*laws, *c.law.folders):
-                kernels = load_law_kernels(name)
+            found.append(load_law_kernels(name, search))
         except KernelError as error:
             raise ConfigError(f"law.{key}", str(error)) from error
-        if key == "name" and c.law.calculus not in kernels.calculi:
-            raise ConfigError("law.calculus", f"law {name} has no {c.law.calculus!r} noise", f"choose one of {list(kernels.calculi)}")
-        try:
-            kernels.parameters(**parameters)
-        except ConfigError as error:
-            if key == "name":
-                raise
-            raise ConfigError(error.key.replace("law.parameters", f"law.{key}_parameters", 1), error.problem, error.fix) from None
-        found.append(kernels)
-    mode_laws(c.law, found, c.system.dimension)
-    return found
+    return bind(section, found, dim)
 
 
-def check(c: RunConfig, laws: Sequence[str] = ()) -> None:
+def check(c: RunConfig, search: LawSearch = BUILT_IN) -> None:
     """What :func:`build` checks before it places the particles: the law (:func:`resolve_law`) and the box."""
-    resolve_law(c, laws)
+    resolve_law(c.law, c.system.dimension, search)
     layout(c)
 
 
@@ -125,10 +118,10 @@ def initial_state(c: RunConfig, particles: Particles, box: np.ndarray) -> State:
     return state
 
 
-def build(c: RunConfig, laws: Sequence[str] = ()) -> Simulation:
-    """The simulation of a validated configuration, from its initial state (step 0); ``laws``: the
-    user's law folders (:func:`resolve_law`)."""
-    kernels = resolve_law(c, laws)
+def build(c: RunConfig, search: LawSearch = BUILT_IN) -> Simulation:
+    """The simulation of a validated configuration, from its initial state (step 0); ``search``: where
+    its laws' names are looked up (:func:`resolve_law`)."""
+    law = resolve_law(c.law, c.system.dimension, search)
     config, s, dim = c.langevin(), c.system, c.system.dimension
     box, region, n = layout(c)
     particles = Particles.spheres(n, s.radius, s.mass)
@@ -136,7 +129,7 @@ def build(c: RunConfig, laws: Sequence[str] = ()) -> Simulation:
     if c.walls is not None:
         place[1] = 2 * slab_half_height(c)
     if s.initial is not None:
-        return Simulation(config, particles, initial_state(c, particles, box), kernels)
+        return Simulation(config, particles, initial_state(c, particles, box), law)
     try:
         if s.start == "lattice":
             position = lattice_positions(n, place, dim, 2 * s.radius)
@@ -149,4 +142,4 @@ def build(c: RunConfig, laws: Sequence[str] = ()) -> Simulation:
     state = thermal_state(particles, position, box, dim, c.thermostat.kT, c.run.seed)
     if c.walls is not None:
         particles, state = add_slab_walls(particles, state, c.walls.half_width, c.walls.roughness, c.run.seed, c.walls.spacing)
-    return Simulation(config, particles, state, kernels)
+    return Simulation(config, particles, state, law)

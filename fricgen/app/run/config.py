@@ -33,8 +33,8 @@ KINDS = ("slit_flow", "active")
 @dataclass(frozen=True)
 class RunLaw(Law):
     """``[law]`` of a run: the engine's law section and ``folder``, a folder of your own law files
-    (relative to the configuration file; its kernels in folder/generated/), searched before
-    FRICGEN_LAWS's and the built-in catalogue."""
+    (relative to the configuration file; its kernels in folder/generated/), searched with those of
+    ``--laws`` and FRICGEN_LAWS, before the built-in catalogue."""
 
     folder: str | None = None
 

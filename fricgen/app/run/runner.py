@@ -24,6 +24,8 @@ from pathlib import Path
 
 import numpy as np
 
+from fricgen.derive.law.catalogues import BUILT_IN, LawSearch
+
 from ...errors import ConfigError, SimulationError
 from ...langevin.simulation import Simulation
 from ...langevin.trajectory import GSDWriter, load_checkpoint, save_checkpoint, truncate_trajectory
@@ -50,7 +52,7 @@ class Plan:
     command: list[str]
 
 
-def plan(source: str, settings: list[str], steps: int | None, out: str | None, resume: str | None, laws: Sequence[str] = ()) -> Plan:
+def plan(source: str, settings: list[str], steps: int | None, out: str | None, resume: str | None, search: LawSearch = BUILT_IN) -> Plan:
     """A run of ``fricgen run``, everything checked and nothing written.
 
     Args:
@@ -59,7 +61,8 @@ def plan(source: str, settings: list[str], steps: int | None, out: str | None, r
         steps: overrides ``run.steps``; None keeps the file's.
         out: the output folder; None: ``fricgen-<config name>``.
         resume: a checkpoint of a stopped run to continue, or None.
-        laws: user law folders (``--laws``), searched with the configuration's ``law.folder``.
+        search: where law names are looked up (the edge's ``--laws`` and FRICGEN_LAWS), with the
+            configuration's ``law.folder``.
 
     Returns:
         The plan: the validated configuration, the simulation at its first step and the folder.
@@ -72,20 +75,20 @@ def plan(source: str, settings: list[str], steps: int | None, out: str | None, r
     config = load_config(path, overrides)
     command = ["fricgen", "run", source, *(arg for text in settings for arg in ("--set", text))]
     command += ["--steps", str(steps)] if steps is not None else []
-    command += [arg for folder in laws for arg in ("--laws", folder)]
-    return _plan(config, command, out, resume, path.stem, laws)
+    command += [arg for folder in search.folders for arg in ("--laws", str(folder))]
+    return _plan(config, command, out, resume, path.stem, search)
 
 
-def check_run(source: str, settings: list[str], laws: Sequence[str] = ()) -> RunConfig:
+def check_run(source: str, settings: list[str], search: LawSearch = BUILT_IN) -> RunConfig:
     """The configuration of a run, checked as :func:`plan` checks a fresh one up to placing the
     particles (the file, the overrides, the law, the box), without building the simulation: a
     sweep's check of its points. ConfigError naming the key and the fix."""
     config = load_config(resolve_source(source), [parse_override(text) for text in settings])
-    check(config, laws)
+    check(config, search)
     return config
 
 
-def _plan(config: RunConfig, command: list[str], out: str | None, resume: str | None, name: str, laws: Sequence[str]) -> Plan:
+def _plan(config: RunConfig, command: list[str], out: str | None, resume: str | None, name: str, search: LawSearch) -> Plan:
     if resume is None:
         folder = Path(out) if out else Path(f"fricgen-{name}")
         check_folder(folder, "--out")
@@ -96,7 +99,7 @@ def _plan(config: RunConfig, command: list[str], out: str | None, resume: str | 
                 f"{folder} already holds a run ({', '.join(taken)})",
                 f"give another --out, delete it, or continue it with --resume {folder / CHECKPOINT}",
             )
-        return Plan(config, build(config, laws), folder, False, command)
+        return Plan(config, build(config, search), folder, False, command)
     checkpoint = Path(resume)
     if not checkpoint.is_file():
         raise ConfigError("--resume", f"no checkpoint file {checkpoint}", "give the checkpoint.npz of the interrupted run")
@@ -104,9 +107,9 @@ def _plan(config: RunConfig, command: list[str], out: str | None, resume: str | 
         raise ConfigError("--out", f"{out} is not the folder of the checkpoint {checkpoint}", "leave --out away when resuming")
     check_folder(checkpoint.parent, "--resume")
     check_checkpoint(checkpoint)
-    fresh = build(config, laws)
+    fresh = build(config, search)
     try:
-        simulation = load_checkpoint(checkpoint, law=fresh.laws)
+        simulation = load_checkpoint(checkpoint, law=fresh.law)
     except ConfigError:  # a checkpoint of another version of the law
         raise
     except (OSError, ValueError, KeyError, TypeError) as error:  # a file that is no checkpoint, or one of another version

@@ -21,6 +21,7 @@ from contextlib import closing
 from pathlib import Path
 
 from ...errors import ConfigError
+from ...kernels import load_law_kernels
 from ..run.outputs import check_folder, dumps
 from ..run.progress import ProgressBar
 from .plots import histogram_figure, temperature_figure
@@ -43,6 +44,7 @@ def run_demo(folder: Path, **changes) -> dict:
     setup = {**DEMO, **changes}
     checks = [passive_check(**setup, contact_noise=noise) for noise in (True, False)]
     check_demo_folder(folder)
+    law = load_law_kernels(setup["law"])  # a built-in law: the demo runs the same anywhere
     steps = checks[0].steps
     clock = time.perf_counter()
     runs = []
@@ -50,7 +52,7 @@ def run_demo(folder: Path, **changes) -> dict:
         for index, check in enumerate(checks):
             bar.offset = index * steps
             bar.describe(f"fricgen demo: {'with' if check.law.contact_noise else 'without'} contact noise")
-            runs.append(passive_run(check, observers=[bar]))
+            runs.append(passive_run(check, law, observers=[bar]))
     folder.mkdir(parents=True, exist_ok=True)
     files = [histogram_figure(runs, folder / "histograms.png"), temperature_figure(runs, folder / "temperatures.png")]
     summary = {

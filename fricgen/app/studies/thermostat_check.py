@@ -19,9 +19,10 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass, field
 
-from ...kernels import LawKernels
+from ...kernels import LawKernels, load_law
 from ...langevin.analysis import Sampler, block_estimate, kl_divergence
 from ...langevin.config import LangevinConfig, Law, Thermostat
+from ...langevin.contact_law import ContactLaw
 from ...langevin.simulation import Simulation
 from ...langevin.system import CLOSE_PACKING, Particles, cubic_side, interaction_reach, lattice_limit, lattice_state, memory_estimate
 from ...schema import Section
@@ -161,12 +162,13 @@ class CheckResult:
 
 
 def passive_run(
-    check: PassiveCheck, observers: Sequence[Callable[[Simulation], None]] = (), law: LawKernels | None = None
+    check: PassiveCheck, law: ContactLaw | LawKernels | Sequence[LawKernels], observers: Sequence[Callable[[Simulation], None]] = ()
 ) -> tuple[CheckResult, Sampler]:
     """Run the passive check; return its result and the sampler (velocity and spin samples).
 
-    ``observers`` are called after every chunk of the equilibration and of the sampling; ``law``: the
-    law's kernels (:func:`fricgen.load_law`), by default looked up by ``check.law.name``."""
+    ``law``: the resolved law of ``check.law``, as :class:`~fricgen.langevin.simulation.Simulation`
+    takes it (:func:`fricgen.load_law`'s kernels, or the edge's ContactLaw); ``observers`` are called
+    after every chunk of the equilibration and of the sampling."""
     start = time.perf_counter()
     kT, dim = check.thermostat.kT, check.dim
     particles = Particles.spheres(check.size, RADIUS, MASS)
@@ -217,7 +219,9 @@ def thermostat_check(law: str | LawKernels, **options) -> CheckResult:
     KL divergences (F-41) below ``kl_limit``.
 
     Args:
-        law: the law's name, or its kernels (:func:`fricgen.load_law`, for a law of one's own folder).
+        law: the law's kernels (:func:`fricgen.load_law`, for a law of one's own folder), or its name,
+            which is resolved here as :func:`fricgen.load_law` resolves it (FRICGEN_LAWS's folders,
+            then the built-in catalogue).
         **options: flat options as in :func:`passive_check`: ``dim``, ``n``, ``phi``, ``total_time``
             (in t0), ``seed``, ``calculus``, ``contact_noise``, ``contact_scheme``, ``parameters``,
             ``kT``, ``dt``, ``solvent``, ...
@@ -226,6 +230,5 @@ def thermostat_check(law: str | LawKernels, **options) -> CheckResult:
         T_trans, T_rot (in kT) with their block errors, the KL divergences, the verdict ``passed``
         and, for the pairwise contact step, its rejection rate.
     """
-    if isinstance(law, LawKernels):
-        return passive_run(passive_check(law.name, **options), law=law)[0]
-    return passive_run(passive_check(law, **options))[0]
+    kernels = law if isinstance(law, LawKernels) else load_law(law)
+    return passive_run(passive_check(kernels.name, **options), kernels)[0]

@@ -15,6 +15,7 @@ Ctrl-C or a lost worker completes only what is missing. Outputs: ``OUT/<point>/`
 point failed (blew up), 2 a bad sweep file, 130 interrupted.
 """
 
+
 from __future__ import annotations
 
 import contextlib
@@ -29,6 +30,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from tqdm import tqdm
+
+from fricgen.derive.law.catalogues import BUILT_IN, LawSearch
 
 from ...errors import ConfigError
 from ..run.config import RunConfig
@@ -52,7 +55,7 @@ class SweepRequest:
     out: str | None = None
     scheduler: str | None = None
     workers: int | None = None
-    laws: tuple[str, ...] = ()
+    search: LawSearch = BUILT_IN
 
 
 def run_sweep(request: SweepRequest, as_json: bool = False) -> int:
@@ -63,7 +66,7 @@ def run_sweep(request: SweepRequest, as_json: bool = False) -> int:
     check_folder(out, "--out")
     workers = _workers(request)
     points = sweep.points()
-    specs = {point.name: _check_point(sweep, point, out / point.name, request.laws) for point in points}
+    specs = {point.name: _check_point(sweep, point, out / point.name, request.search) for point in points}
     todo = [spec for spec in specs.values() if spec is not None]
     try:
         with _client(request.scheduler, min(workers, len(todo))) if todo else contextlib.nullcontext() as client:
@@ -99,12 +102,12 @@ def _workers(request: SweepRequest) -> int:
     return request.workers
 
 
-def _check_point(sweep: Sweep, point: Point, folder: Path, laws: tuple[str, ...]) -> dict | None:
+def _check_point(sweep: Sweep, point: Point, folder: Path, search: LawSearch) -> dict | None:
     """The task's spec of a point (:func:`~fricgen.app.sweep.task.run_point`), None if it is
     finished; ConfigError (named by the point) if its configuration or its finished run does not fit."""
     try:
         check_folder(folder, "--out")
-        config = check_run(sweep.base, list(point.settings), laws)
+        config = check_run(sweep.base, list(point.settings), search)
         if folder_state(folder, config.run.steps) == "done":
             _check_finished(folder, config.as_dict())
             return None
@@ -119,7 +122,7 @@ def _check_point(sweep: Sweep, point: Point, folder: Path, laws: tuple[str, ...]
         "steps": config.run.steps,
         "base": sweep.base,
         "settings": list(point.settings),
-        "laws": [str(Path(path).absolute()) for path in laws],
+        "laws": [str(path) for path in search.folders],  # the search, as data: the task's edge rebuilds it
     }
 
 

@@ -35,6 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from fricgen.derive.errors import DeriveError
+from fricgen.derive.law.catalogues import LawSearch
 
 from ...errors import FricgenError
 from ..run.outputs import CHECKPOINT, SUMMARY, fail
@@ -124,7 +125,8 @@ def _run(spec: dict, out: str | None = None, resume: str | None = None) -> int:
     process; its exit status, and an error (a configuration or checkpoint that does not fit) as the
     command line reports it."""
     try:
-        return execute(plan(spec["base"], spec["settings"], None, out, resume, spec["laws"]))
+        search = LawSearch.of(*spec["laws"], named_by="the sweep's law folders")
+        return execute(plan(spec["base"], spec["settings"], None, out, resume, search))
     except (FricgenError, DeriveError) as error:
         return fail("fricgen run", error, getattr(error, "exit_status", 2))
     except KeyboardInterrupt:
