@@ -13,6 +13,7 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
+from ..accuracy import check_noise
 from ..errors import ConfigError, SimulationError
 from ..kernels import LawKernels, load_potential, no_weight
 from . import integrator
@@ -134,6 +135,9 @@ class Simulation:
         tabulate = getattr(kernels.module, f"tabulate_{self.law.calculus}", None)  # noise tables of an integral-form D
         if tabulate is not None:
             values = tabulate(mode_mobilities(self.particles, mode), self.config.thermostat.kT, values)
+        c = self.config.law
+        if c.friction and c.contact_noise and getattr(c, f"{mode}_noise", True):  # D at the run's values (docs/trust-model.md)
+            check_noise(kernels, str(c.calculus), values, mode_mobilities(self.particles, mode), self.config.thermostat.kT)
         return values
 
     def mode_kernels(self) -> tuple:
