@@ -5,9 +5,9 @@
 mobilities mu; before it starts, :func:`check_noise` checks the D that the kernels give there, the
 noise tables included (docs/trust-model.md):
 
-- speeds: u = 0, u = s 10^(-6 + k/3) below s/32, then 251 equal steps up to U = 8 s (none a dyadic
-  multiple of sqrt(a), where a table piece ends and is exact), s = sqrt(mu kT) the equilibrium spread of
-  each component of the relative tangential speed: P(u > U) = exp(-32) = 1.3e-14 in 3-D (two
+- speeds: u = 0, u = s 10^(-6 + k/3) below s/30, then 251 equal steps up to U = 8 s (none but U a
+  dyadic multiple of sqrt(a), where a table piece ends and is exact), s = sqrt(mu kT) the equilibrium
+  spread of each component of the relative tangential speed: P(u > U) = exp(-32) = 1.3e-14 in 3-D (two
   components), erfc(8/sqrt(2)) = 1.2e-15 in 2-D (one);
 - contacts: w = w(r) at r = 0.9, 1 and 1.1 (in units of sigma_ik) for a law with a weight, else w = r = 1;
 - reference: (F-22) D(u) = (1/a) int_u^oo f(s) exp(-(s^2 - u^2)/(2a)) ds, a = (1 - theta) mu kT, with f
@@ -49,7 +49,7 @@ RUN_TOLERANCE = 1e-6
 REFERENCE_TOLERANCE = 1e-9
 #: Top of the checked speeds, in units of s = sqrt(mu kT).
 TOP = 8.0
-#: Equal cells between s/32 and TOP s (prime: no cell end is a dyadic multiple of sqrt(a)).
+#: Equal cells between s/30 and TOP s (prime: no cell end is a dyadic multiple of sqrt(a)).
 CELLS = 251
 #: Breakpoints on each side of a feature's possible centre (:func:`_hints`): down to 4^-20 = 1e-12 of it.
 LADDER = 20
@@ -125,7 +125,7 @@ def _measure(kernels: LawKernels, calculus: str, plain: np.ndarray, params: np.n
                     error = abs(got - exact) / exact if exact > 0 else (0.0 if got == 0 else math.inf)
                     compared += 1
                     if not error <= worst:
-                        worst, where = error, f"u = {u:.6g} {spot}{how}: kernel {got:.10g}, reference {exact:.10g}"
+                        worst, where = error, f"u = {u:.6g} {spot}{how}): kernel {got:.10g}, reference {exact:.10g}"
     problem = ""
     if not worst <= RUN_TOLERANCE:
         problem = f"its D is off by {worst:.2g} at {where}, beyond the run-time tolerance {RUN_TOLERANCE:g}"
@@ -144,9 +144,9 @@ def _report(kernels, calculus, plain, start, error, problem, reference_error, co
 
 
 def _speeds(s: float) -> np.ndarray:
-    """u = 0, s 10^(-6 + k/3) below s/32, and CELLS equal steps from s/32 to TOP s."""
+    """u = 0, s 10^(-6 + k/3) below s/30, and CELLS equal steps from s/30 to TOP s."""
     low = s * 10.0 ** (-6.0 + np.arange(14) / 3.0)
-    return np.concatenate([[0.0], low[low < s / 32], np.linspace(s / 32, TOP * s, CELLS + 1)])
+    return np.concatenate([[0.0], low[low < s / 30], np.linspace(s / 30, TOP * s, CELLS + 1)])
 
 
 def _contacts(kernels: LawKernels, plain: np.ndarray) -> list[tuple[float, float]]:

@@ -90,7 +90,7 @@ def test_the_noise_tables_are_checked_against_the_reference():
     head = plain.size + 1 + 3 + plain.size + 2 * kernels.module.TABLE_ZONES  # params, count, the table's header
     damaged[head:] *= 1 + 1e-4
     accuracy._CHECKED.clear()
-    with pytest.raises(KernelError, match=r"off by .*, noise table: kernel"):
+    with pytest.raises(KernelError, match=r"off by .*, noise table\): kernel"):
         accuracy.check_noise(kernels, "ito", damaged, [MU], KT)
     accuracy._CHECKED.clear()
 
@@ -124,3 +124,13 @@ def test_each_run_value_set_is_checked_once():
     first = accuracy.check_noise(kernels, "stratonovich", values, [MU], KT)
     assert accuracy.check_noise(kernels, "stratonovich", values.copy(), [MU], KT) is first
     assert accuracy.check_noise(kernels, "stratonovich", values, [MU / 2], KT) is not first
+
+
+def test_fricgen_noise_refuses_what_a_run_would(corpus):
+    """``fricgen noise`` checks its --mu and --kT the same way: the narrow bump is refused, its defaults answer."""
+    from fricgen.app.cli.noise import NoiseQuery, evaluate
+
+    kernels, query = corpus["bump", "ito"], NoiseQuery(u=(0.5,), mu=MU, kT=KT)
+    assert evaluate(kernels, "ito", query, {})["D"][0] > 0
+    with pytest.raises(KernelError, match="delta=0.01: its D is off by"):
+        evaluate(kernels, "ito", query, {"kappa_b": 100.0, "u_b": 4.0, "delta": 0.01})

@@ -14,6 +14,7 @@ import math
 import sys
 from dataclasses import dataclass, field
 
+from ...accuracy import check_noise
 from ...errors import ConfigError
 from ...kernels import LawKernels
 from ...schema import Section
@@ -46,6 +47,17 @@ class NoiseQuery(Section):
         )
         self.require_positive("mu", "kT")
         self.require_scale("mu", "kT")
+
+
+def default_mobility(mode: str) -> float:
+    """The mobility of ``mode`` (sliding, rolling, spinning) between two spheres m = 1, R = 1/2,
+    I = (2/5) m R^2 (the engine's :func:`~fricgen.langevin.simulation.mode_mobilities`): sliding
+    1/m_i + 1/m_k + R_i^2/I_i + R_k^2/I_k = 7, rolling and spinning R_eff^2 (1/I_i + 1/I_k) = 1.25
+    (R_eff = R_i R_k / (R_i + R_k) = 1/4), in 1/m."""
+    from ...langevin.simulation import mode_mobilities
+    from ...langevin.system import Particles
+
+    return float(mode_mobilities(Particles.spheres(2), mode)[0])
 
 
 def evaluate(kernels: LawKernels, calculus: str, query: NoiseQuery, parameters: dict[str, float]) -> dict:
@@ -81,8 +93,10 @@ def evaluate(kernels: LawKernels, calculus: str, query: NoiseQuery, parameters: 
                 f"underflows at u = {x:g} (f = {fx:g}, D = {dx:g}): below the smallest normal double",
                 "give larger --param, --w (or smaller --r), --u or --kT values",
             )
+    check_noise(kernels, calculus, params, [query.mu], query.kT)  # D at these values, at every speed that matters
     return {
         "law": law,
+        "mode": kernels.mode,
         "calculus": calculus,
         "u": list(query.u),
         "D": d,
