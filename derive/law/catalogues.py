@@ -27,6 +27,7 @@ from pathlib import Path
 
 from ..errors import DeriveError
 from .lawdata import CATALOGUE, file_kind
+from .names import clash
 
 #: The environment variable that names user law folders (os.pathsep-separated).
 LAWS_ENV = "FRICGEN_LAWS"
@@ -133,6 +134,9 @@ def check_law_files(catalogue: str | Path) -> list[str]:
     names = law_names(folder)
     if not names:
         raise CatalogueError(f"the law folder {inert(str(folder))} holds no law files (NAME.toml): there is nothing to verify or generate")
+    refusal = clash((name, inert(str(folder / f"{name}.toml"))) for name in names)
+    if refusal:
+        raise CatalogueError(refusal)
     return names
 
 
@@ -209,6 +213,9 @@ class LawSearch:
                 f"unknown law {name!r}: no law {name!r} in {' or '.join(map(str, folders))}; choose from {available}, or add the folder"
                 f" of your law files with --laws DIR (or {LAWS_ENV})"
             )
+        refusal = clash(((law, inert(str(folder / f"{law}.toml"))) for folder in folders for law in law_names(folder)), name)
+        if refusal:  # names that differ only in case or underscores: one law would run the other's code
+            raise CatalogueError(refusal)
         return found[0]
 
     def by_catalogue(self, names: Sequence[str] = ()) -> dict[Path, list[str]]:

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 from string import Template
 
+from ...law.names import camel
 from .templates import LAW_CONSTANTS
 
 #: theta of each calculus (fricgen.derive.calculus.Calculus.theta): where the scheme evaluates D.
@@ -550,7 +551,7 @@ def fix_files(fields: dict[str, str], kernels: str, support: str, ziggurat: str,
 
 
 def fix_class(law: str) -> str:
-    return "FixFricgen" + "".join(part[:1].upper() + part[1:] for part in law.split("_"))
+    return "FixFricgen" + camel(law)
 
 
 PLUGIN_FIELDS = Template("""#include "fix_fricgen_${law}.h"

@@ -32,6 +32,7 @@ from ...calculus import velocity_verlet_refusal
 from ...errors import DeriveError
 from ...law.catalogues import inert
 from ...law.laws import FrictionLaw
+from ...law.names import camel
 from ...noise.derivation import NoiseModel
 from ..printing import header
 from .code import law_kernels, potential_kernels, slope_kernel, support, wca
@@ -59,7 +60,8 @@ def check_calculus(law: FrictionLaw, calculus: str) -> None:
 
 
 def class_name(law: str) -> str:
-    return "PairFricgen" + "".join(part[:1].upper() + part[1:] for part in law.split("_"))
+    """The C++ class of the law's pair style (fricgen.derive.law.names: distinct laws never share one)."""
+    return "PairFricgen" + camel(law)
 
 
 def _comment_header(lines: list[str], mark: str) -> str:
@@ -256,6 +258,7 @@ def plugin_files(law: FrictionLaw, model: NoiseModel, digest: str, source: str, 
     cxx, hash_mark = _comment_header(lines, "//"), _comment_header(lines, "#")
     names = [p.name for p in law.parameters]
     fields = {"law": law.name, "LAW_UPPER": law.name.upper(), "cls": class_name(law.name), "calculus": calculus}
+    fields["built_for"] = f"{law.name} {digest}"  # what the plugin's creator checks its class against (templates.PLUGIN)
     fields["parameter_list"] = ", ".join(n for n in names if n not in OWNED) or "none"
     fields |= _style(law, fields, ziggurat)
     files = {

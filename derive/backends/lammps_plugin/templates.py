@@ -46,6 +46,7 @@ class ${cls} : public Pair {
   void coeff(int, char **) override;
   void init_style() override;
   double init_one(int, int) override;
+  virtual const char *built_for() const;    // "<law> <source hash>": the plugin's creator checks it
 
  protected:
   double kT, inertia;
@@ -107,6 +108,11 @@ ${potential}
 
 ${kernels}
 }    // namespace
+
+const char *${cls}::built_for() const
+{
+  return "${built_for}";
+}
 
 ${cls}::${cls}(LAMMPS *lmp) : Pair(lmp)
 {
@@ -350,14 +356,24 @@ ${pair_loop}      const double nx = dx / r, ny = dy / r, nz = dz / r;
 
 PLUGIN = Template("""#include "lammpsplugin.h"
 
+#include "error.h"
 #include "lammps.h"
 #include "pair_fricgen_${law}.h"
+
+#include <cstring>
 ${fix_include}
 using namespace LAMMPS_NS;
 
+// Two plugins whose laws' names become one C++ class (fricgen.derive.law.names) would share it: LAMMPS
+// loads plugins with their symbols global, so this creator would make the first plugin's object and
+// the style run another law. It refuses that: the object must say it was built for this law.
 static Pair *creator(LAMMPS *lmp)
 {
-  return new ${cls}(lmp);
+  ${cls} *pair = new ${cls}(lmp);
+  if (std::strcmp(pair->built_for(), "${built_for}") != 0)
+    lmp->error->all(FLERR, "pair_style fricgen/${law}: its class ${cls} runs the code of law {} (a plugin loaded "
+                    "earlier defines the same class): load one of the two, or rename a law", pair->built_for());
+  return pair;
 }
 ${fix_creator}
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)

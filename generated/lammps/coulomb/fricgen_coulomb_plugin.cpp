@@ -5,15 +5,25 @@
 // Regenerate: fricgen lammps coulomb
 #include "lammpsplugin.h"
 
+#include "error.h"
 #include "lammps.h"
 #include "pair_fricgen_coulomb.h"
+
+#include <cstring>
 #include "fix_fricgen_coulomb.h"
 
 using namespace LAMMPS_NS;
 
+// Two plugins whose laws' names become one C++ class (fricgen.derive.law.names) would share it: LAMMPS
+// loads plugins with their symbols global, so this creator would make the first plugin's object and
+// the style run another law. It refuses that: the object must say it was built for this law.
 static Pair *creator(LAMMPS *lmp)
 {
-  return new PairFricgenCoulomb(lmp);
+  PairFricgenCoulomb *pair = new PairFricgenCoulomb(lmp);
+  if (std::strcmp(pair->built_for(), "coulomb 72c6901bf2fb38e73b37f255af5db496594bcd5ab7af90c94bb6567ec25dde72") != 0)
+    lmp->error->all(FLERR, "pair_style fricgen/coulomb: its class PairFricgenCoulomb runs the code of law {} (a plugin loaded "
+                    "earlier defines the same class): load one of the two, or rename a law", pair->built_for());
+  return pair;
 }
 static Fix *fix_creator(LAMMPS *lmp, int argc, char **argv)
 {

@@ -5,15 +5,25 @@
 // Regenerate: fricgen lammps coulomb_newton
 #include "lammpsplugin.h"
 
+#include "error.h"
 #include "lammps.h"
 #include "pair_fricgen_coulomb_newton.h"
+
+#include <cstring>
 #include "fix_fricgen_coulomb_newton.h"
 
 using namespace LAMMPS_NS;
 
+// Two plugins whose laws' names become one C++ class (fricgen.derive.law.names) would share it: LAMMPS
+// loads plugins with their symbols global, so this creator would make the first plugin's object and
+// the style run another law. It refuses that: the object must say it was built for this law.
 static Pair *creator(LAMMPS *lmp)
 {
-  return new PairFricgenCoulombNewton(lmp);
+  PairFricgenCoulombNewton *pair = new PairFricgenCoulombNewton(lmp);
+  if (std::strcmp(pair->built_for(), "coulomb_newton 50e8ad3928d3c06ad08ebe539cc907acea0f9d3e9ad94eeeb2febb4c6cdb1b1d") != 0)
+    lmp->error->all(FLERR, "pair_style fricgen/coulomb_newton: its class PairFricgenCoulombNewton runs the code of law {} (a plugin loaded "
+                    "earlier defines the same class): load one of the two, or rename a law", pair->built_for());
+  return pair;
 }
 static Fix *fix_creator(LAMMPS *lmp, int argc, char **argv)
 {

@@ -5,15 +5,25 @@
 // Regenerate: fricgen lammps linear
 #include "lammpsplugin.h"
 
+#include "error.h"
 #include "lammps.h"
 #include "pair_fricgen_linear.h"
+
+#include <cstring>
 #include "fix_fricgen_linear.h"
 
 using namespace LAMMPS_NS;
 
+// Two plugins whose laws' names become one C++ class (fricgen.derive.law.names) would share it: LAMMPS
+// loads plugins with their symbols global, so this creator would make the first plugin's object and
+// the style run another law. It refuses that: the object must say it was built for this law.
 static Pair *creator(LAMMPS *lmp)
 {
-  return new PairFricgenLinear(lmp);
+  PairFricgenLinear *pair = new PairFricgenLinear(lmp);
+  if (std::strcmp(pair->built_for(), "linear 98b6023b8594e314d9e3cb906ccdcd91a7aa969f6aac8a925ef4626c0dc68070") != 0)
+    lmp->error->all(FLERR, "pair_style fricgen/linear: its class PairFricgenLinear runs the code of law {} (a plugin loaded "
+                    "earlier defines the same class): load one of the two, or rename a law", pair->built_for());
+  return pair;
 }
 static Fix *fix_creator(LAMMPS *lmp, int argc, char **argv)
 {

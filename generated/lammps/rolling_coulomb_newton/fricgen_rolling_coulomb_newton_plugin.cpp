@@ -5,14 +5,24 @@
 // Regenerate: fricgen lammps rolling_coulomb_newton
 #include "lammpsplugin.h"
 
+#include "error.h"
 #include "lammps.h"
 #include "pair_fricgen_rolling_coulomb_newton.h"
 
+#include <cstring>
+
 using namespace LAMMPS_NS;
 
+// Two plugins whose laws' names become one C++ class (fricgen.derive.law.names) would share it: LAMMPS
+// loads plugins with their symbols global, so this creator would make the first plugin's object and
+// the style run another law. It refuses that: the object must say it was built for this law.
 static Pair *creator(LAMMPS *lmp)
 {
-  return new PairFricgenRollingCoulombNewton(lmp);
+  PairFricgenRollingCoulombNewton *pair = new PairFricgenRollingCoulombNewton(lmp);
+  if (std::strcmp(pair->built_for(), "rolling_coulomb_newton b06446e48d09d3540c5bdd6e38d4d345cc3ca66519f71ace7e94526757b3a088") != 0)
+    lmp->error->all(FLERR, "pair_style fricgen/rolling_coulomb_newton: its class PairFricgenRollingCoulombNewton runs the code of law {} (a plugin loaded "
+                    "earlier defines the same class): load one of the two, or rename a law", pair->built_for());
+  return pair;
 }
 
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)

@@ -5,15 +5,25 @@
 // Regenerate: fricgen lammps smooth_coulomb
 #include "lammpsplugin.h"
 
+#include "error.h"
 #include "lammps.h"
 #include "pair_fricgen_smooth_coulomb.h"
+
+#include <cstring>
 #include "fix_fricgen_smooth_coulomb.h"
 
 using namespace LAMMPS_NS;
 
+// Two plugins whose laws' names become one C++ class (fricgen.derive.law.names) would share it: LAMMPS
+// loads plugins with their symbols global, so this creator would make the first plugin's object and
+// the style run another law. It refuses that: the object must say it was built for this law.
 static Pair *creator(LAMMPS *lmp)
 {
-  return new PairFricgenSmoothCoulomb(lmp);
+  PairFricgenSmoothCoulomb *pair = new PairFricgenSmoothCoulomb(lmp);
+  if (std::strcmp(pair->built_for(), "smooth_coulomb a68bd35cccf52750ee15781d4daa13158f9843fe2b623afbfaa4f54bdbdae406") != 0)
+    lmp->error->all(FLERR, "pair_style fricgen/smooth_coulomb: its class PairFricgenSmoothCoulomb runs the code of law {} (a plugin loaded "
+                    "earlier defines the same class): load one of the two, or rename a law", pair->built_for());
+  return pair;
 }
 static Fix *fix_creator(LAMMPS *lmp, int argc, char **argv)
 {

@@ -21,6 +21,7 @@ class PairFricgenSmoothCoulomb : public Pair {
   void coeff(int, char **) override;
   void init_style() override;
   double init_one(int, int) override;
+  virtual const char *built_for() const;    // "<law> <source hash>": the plugin's creator checks it
 
  protected:
   double kT, inertia;

@@ -5,15 +5,25 @@
 // Regenerate: fricgen lammps stribeck
 #include "lammpsplugin.h"
 
+#include "error.h"
 #include "lammps.h"
 #include "pair_fricgen_stribeck.h"
+
+#include <cstring>
 #include "fix_fricgen_stribeck.h"
 
 using namespace LAMMPS_NS;
 
+// Two plugins whose laws' names become one C++ class (fricgen.derive.law.names) would share it: LAMMPS
+// loads plugins with their symbols global, so this creator would make the first plugin's object and
+// the style run another law. It refuses that: the object must say it was built for this law.
 static Pair *creator(LAMMPS *lmp)
 {
-  return new PairFricgenStribeck(lmp);
+  PairFricgenStribeck *pair = new PairFricgenStribeck(lmp);
+  if (std::strcmp(pair->built_for(), "stribeck ac68a2d097b312d272ecfa50470574a1c17ae0cd33c041b27aa30c9b39dbdff6") != 0)
+    lmp->error->all(FLERR, "pair_style fricgen/stribeck: its class PairFricgenStribeck runs the code of law {} (a plugin loaded "
+                    "earlier defines the same class): load one of the two, or rename a law", pair->built_for());
+  return pair;
 }
 static Fix *fix_creator(LAMMPS *lmp, int argc, char **argv)
 {

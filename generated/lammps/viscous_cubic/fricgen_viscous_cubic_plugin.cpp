@@ -5,15 +5,25 @@
 // Regenerate: fricgen lammps viscous_cubic
 #include "lammpsplugin.h"
 
+#include "error.h"
 #include "lammps.h"
 #include "pair_fricgen_viscous_cubic.h"
+
+#include <cstring>
 #include "fix_fricgen_viscous_cubic.h"
 
 using namespace LAMMPS_NS;
 
+// Two plugins whose laws' names become one C++ class (fricgen.derive.law.names) would share it: LAMMPS
+// loads plugins with their symbols global, so this creator would make the first plugin's object and
+// the style run another law. It refuses that: the object must say it was built for this law.
 static Pair *creator(LAMMPS *lmp)
 {
-  return new PairFricgenViscousCubic(lmp);
+  PairFricgenViscousCubic *pair = new PairFricgenViscousCubic(lmp);
+  if (std::strcmp(pair->built_for(), "viscous_cubic 6ed8a71b1a1478e7c675fac40147957410460b0374a73b1561cb70da83497c40") != 0)
+    lmp->error->all(FLERR, "pair_style fricgen/viscous_cubic: its class PairFricgenViscousCubic runs the code of law {} (a plugin loaded "
+                    "earlier defines the same class): load one of the two, or rename a law", pair->built_for());
+  return pair;
 }
 static Fix *fix_creator(LAMMPS *lmp, int argc, char **argv)
 {
