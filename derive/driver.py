@@ -121,9 +121,20 @@ def check_not_foreign(path: Path, text: str) -> None:
         )
 
 
+def check_folder_path(folder: Path) -> None:
+    """DeriveError (one line) where ``folder`` or a folder above it is a file (DIR/generated a file), so
+    that nothing can be written into it."""
+    blocked = next((path for path in (*reversed(folder.parents), folder) if path.exists() and not path.is_dir()), None)
+    if blocked is not None:
+        where = f"{inert(str(blocked))} is a file, not a folder: fricgen writes into {inert(str(folder))}"
+        raise DeriveError(f"{where}; move it away, then generate again")
+
+
 def write_if_changed(path: Path, text: str) -> Written:
     """Write ``text`` atomically unless the file already holds exactly that (keeps Numba's cache valid).
-    DeriveError (one line) where something that is not a regular file (a folder, a FIFO) is in the way."""
+    DeriveError (one line) where something that is not a regular file (a folder, a FIFO) is in the way,
+    or a file where a folder of the path should be (DIR/generated a file)."""
+    check_folder_path(path.parent)
     check_not_foreign(path, text)
     try:
         if read_regular(path, len(text.encode()) + 1) == text.encode():
@@ -196,6 +207,7 @@ def generate(names: list[str] | None = None, catalogue: Path = CATALOGUE, output
             f" (the built-in law files are in {CATALOGUE})"
         )
     output = kernel_folder(catalogue) if output is None else Path(output)
+    check_folder_path(output / "laws")  # before any derivation
     if POTENTIALS_SOURCE.read_bytes() != potentials.SOURCE:
         raise GenerationError(
             f"{POTENTIALS_SOURCE} changed since fricgen.derive.law.potentials was imported: the potentials and the weights of laws would be"

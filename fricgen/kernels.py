@@ -217,6 +217,9 @@ def _user_kernels(
     the text, not that of the law file) are refused before they run: ``check(hash)`` raises."""
     folder = kernel_folder(catalogue)
     law_file = f"laws/{name}.py"
+    blocked = next((path for path in (folder, folder / "laws") if os.path.lexists(path) and not path.is_dir()), None)
+    if blocked is not None:
+        raise KernelError(f"{blocked} is a file, not the folder of the kernels of law {name}: move it away, then run `{command}`")
     if not os.path.lexists(folder / law_file):
         raise missing()
     try:

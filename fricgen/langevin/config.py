@@ -89,7 +89,8 @@ class Law(Section):
                 getattr(self, mode) is not None or getattr(self, f"{mode}_noise"),
                 f"{mode}_noise",
                 f"drops the noise of no law: law.{mode} names none",
-                f'name the {mode} law (law.{mode} = "...") or remove it',
+                f'name the {mode} law (law.{mode} = "...") or remove it; a {mode} law given as law.name has its noise'
+                " dropped by contact_noise = false",
             )
 
     @property

@@ -157,6 +157,8 @@ thermostat-check linear --param beta_f=1 | --param beta_f | has no parameter
 thermostat-check linear --param sigma=1.2 | --param sigma | set by the radii
 thermostat-check coulomb --calculus hk | --calculus | no kernels for the 'hk' calculus
 thermostat-check stick_slip | LAW | unknown law 'stick_slip'
+thermostat-check rolling_coulomb_newton --no-rolling-noise | --no-rolling-noise | is itself a rolling law
+thermostat-check linear --no-spinning-noise | --no-spinning-noise | give the spinning law with --spinning NAME
 run passive --set thermostat.dt=inf | thermostat.dt | got inf
 run passive --set thermostat.dt=nan | thermostat.dt | got nan
 run passive --set thermostat.dt=0 | thermostat.dt | must be positive

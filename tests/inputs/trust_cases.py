@@ -10,18 +10,33 @@ kern.toml), recorded in the manifest of the test's cache as ``fricgen generate``
 writes, so that no derivation is needed; k_good, left as it is, loads and runs (the control), and so
 does k_copy, a copy of it (its files hold what fricgen wrote); every other one is damaged in one
 way. Damaged code writes a canary file when run: a case that ran it changes the folder.
+
+Names that become one name in code (fricgen.derive.law.names): clash/ holds Foo_bar and foo_bar (one
+file on a case-insensitive file system), path_a/ and path_b/ hold rate_2 and rate2 (one C++ class)
+on a search path of two folders, upper/ holds Linear beside the built-in linear. The sweeps
+(sweeps/sweep.toml, one point seed=1) find in their --out a finished point that ran another version
+of its law (its checkpoint's law hash), a point folder that is a symbolic link to a sibling or to
+nothing, a finished point whose config.json is cut short, a point name longer than a file name may
+be, and a checkpoint.npz.tmp that is a folder; :data:`SWEEP_GOOD` is the finished point with its
+law's hash, which the sweep keeps (the control).
 """
 
 from __future__ import annotations
 
+import json
 import os
 import re
 import shutil
 from pathlib import Path
 
+import numpy as np
+
+from fricgen.app.run.outputs import dumps
+from fricgen.app.run.runner import check_run
 from fricgen.derive.law import manifests
 from fricgen.derive.law.catalogues import GENERATED
 from fricgen.derive.law.lawdata import read_law_data, source_hash
+from fricgen.kernels import load_law_kernels
 
 LAW = """name = "{name}"
 friction = "w*{parameter}*u"
@@ -88,7 +103,42 @@ noise --laws {in}/k_nopackage kern --u 1 --w 1 | __init__.py | is missing
 noise --laws {in}/k_stale kern --u 1 --w 1 | kern | are stale
 thermostat-check kern --laws {in}/k_init | __init__.py | is not the file that fricgen wrote
 run {in}/run_tampered.toml | __init__.py | is not the file that fricgen wrote
+generate --laws {in}/clash | foo_bar | have names that become the same file name on a case-insensitive file system
+verify --laws {in}/clash Foo_bar | LAW | laws 'Foo_bar'
+noise --laws {in}/clash foo_bar --u 1 --w 1 | LAW | and 'foo_bar'
+noise --laws {in}/path_a --laws {in}/path_b rate2 --u 1 --w 1 | LAW | become the same C++ class name, 'Rate2'
+lammps --laws {in}/path_a --laws {in}/path_b rate_2 --out {in}/nowhere | LAW | become the same C++ class name
+noise --laws {in}/upper linear --u 1 --w 1 | LAW | laws 'Linear'
+lammps --laws {in}/upper Linear --out {in}/nowhere | LAW | one would run the other's code
+noise --laws {in}/gen_file kern --u 1 --w 1 | generated | is a file, not the folder of the kernels
+generate --laws {in}/gen_file kern | generated | is a file, not a folder
+generate --laws {in}/gen_file | generated | move it away
+sweep {in}/sweeps/sweep.toml --out {in}/sweep_stale | law | ran another version of their laws than this run's (the law hashes
+sweep {in}/sweeps/sweep.toml --out {in}/sweep_stale --json | --rerun-stale | seed=1
+sweep {in}/sweeps/sweep.toml --out {in}/sweep_linked | --out | is a symbolic link (to
+sweep {in}/sweeps/sweep.toml --out {in}/sweep_dangling | --out | is a symbolic link (to
+sweep {in}/sweeps/sweep.toml --out {in}/sweep_truncated | --out | whose config.json cannot be read
+sweep {in}/sweeps/long.toml --out {in}/sweep_long | grid | more than the file system allows
+sweep {in}/sweeps/sweep.toml --out {in}/sweep_tmpdir | --out | checkpoint.npz.tmp is a folder
+sweep {in}/sweeps/sweep.toml --out {in}/sweep_fresh --scheduler http://localhost:8786 | --scheduler | http:// is not a scheme of Dask's
+run passive --set system.n=64 --out {in}/sweep_tmpdir/seed=1 | --out | is a folder, in the way of a file the run writes
 """
+
+#: A sweep of one point, seed=1 (the runs of a second that tests/cli/test_sweep.py makes).
+SWEEP = """base = "passive"
+
+[set]
+"system.n" = 64
+"run.steps" = 600
+"run.equilibrate" = 200
+"run.chunk" = 100
+"output.period" = 100
+
+[grid]
+"run.seed" = [1]
+"""
+#: The finished point with its law's hash: the sweep keeps it (ran 0).
+SWEEP_GOOD = "sweep {in}/sweeps/sweep.toml --out {in}/sweep_good --json"
 
 #: The controls: the same kernels, undamaged, load and run, and so does a copy of their folder.
 GOOD = ("noise --laws {in}/k_good kern --u 1 --w 1 --json", "noise --laws {in}/k_copy kern --u 1 --w 1 --json")
@@ -120,6 +170,37 @@ def _kernels(folder: Path) -> dict[str, bytes]:
         (generated / name).write_bytes(data)
     manifests.record(generated.resolve(), {name: manifests.sha256(data) for name, data in files.items()})
     return files
+
+
+def finished_point(folder: Path, law_hash: str | None = None) -> Path:
+    """The folder of a finished point seed=1 of :data:`SWEEP`: its config.json as fricgen run writes it,
+    a summary, and a checkpoint that records ``law_hash`` (default: that of the law's kernels) as the
+    hash of the law it ran."""
+    settings = ["system.n=64", "run.steps=600", "run.equilibrate=200", "run.chunk=100", "output.period=100", "run.seed=1"]
+    config = check_run("passive", settings)
+    folder.mkdir(parents=True)
+    (folder / "config.json").write_text(dumps({"command": ["fricgen", "run", "passive"], **config.as_dict()}))
+    (folder / "summary.json").write_text('{"steps": 600}')
+    stored = json.dumps({"law": {"name": config.law.name}})
+    law_hash = load_law_kernels(config.law.name).source_hash if law_hash is None else law_hash
+    np.savez(folder / "checkpoint.npz", config=stored, law_file="", law_hash=law_hash)
+    return folder
+
+
+def build_sweeps(root: Path) -> None:
+    """The sweep files and the output folders of the sweep rows."""
+    (root / "sweeps").mkdir()
+    (root / "sweeps" / "sweep.toml").write_text(SWEEP)
+    (root / "sweeps" / "long.toml").write_text(SWEEP.replace('"run.seed" = [1]', "[grid.model]\n" + "x" * 300 + " = {}"))
+    finished_point(root / "sweep_good" / "seed=1")
+    finished_point(root / "sweep_stale" / "seed=1", "0" * 64)  # the law edited and regenerated since
+    finished_point(root / "sweep_linked" / "elsewhere")
+    (root / "sweep_linked" / "seed=1").symlink_to(root / "sweep_linked" / "elsewhere")
+    (root / "sweep_dangling").mkdir()
+    (root / "sweep_dangling" / "seed=1").symlink_to(root / "sweep_dangling" / "gone")
+    config = finished_point(root / "sweep_truncated" / "seed=1") / "config.json"
+    config.write_text(config.read_text()[:100])
+    (root / "sweep_tmpdir" / "seed=1" / "checkpoint.npz.tmp").mkdir(parents=True)
 
 
 def build(root: Path) -> None:
@@ -171,6 +252,14 @@ def build(root: Path) -> None:
     (root / "k_nopackage" / "generated" / "__init__.py").unlink()
     _kernels(root / "k_stale")
     _law(root / "k_stale", "kern", "gamma_s")  # the law edited after its kernels were generated
+    for name in ("Foo_bar", "foo_bar"):
+        _law(root / "clash", name)
+    _law(root / "path_a", "rate_2")
+    _law(root / "path_b", "rate2")
+    _law(root / "upper", "Linear")
+    _law(root / "gen_file", "kern")
+    (root / "gen_file" / "generated").write_text("not a folder\n")
+    build_sweeps(root)
     (root / "run_tampered.toml").write_text('[system]\nn = 16\npacking_fraction = 0.5\n[law]\nname = "kern"\nfolder = "k_init"\n')
 
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import functools
 import sys
 import typing
 import warnings
@@ -19,7 +20,7 @@ from fricgen.derive.calculus import CALCULI
 from fricgen.derive.errors import DeriveError
 
 from ... import __version__
-from ...errors import FricgenError
+from ...errors import ConfigError, FricgenError
 from ..run.outputs import dumps, fail
 from . import laws
 from .arguments import Parser, UsageError, add_command, join_negative_values, named_by_flags
@@ -101,17 +102,20 @@ def _assignment(text: str) -> tuple[str, float]:
 def _noise(args: argparse.Namespace) -> int:
     """fricgen noise LAW ...: D(u) through the generated kernels, as JSON."""
     from ...kernels import load_law_kernels
-    from .noise import NoiseQuery, evaluate
+    from .noise import NoiseQuery, default_mobility, evaluate
 
     laws.check_law_names([args.law], args.search)
     laws.check_calculus(args.law, args.calculus, args.search)
-    query = NoiseQuery(tuple(args.u), args.r, args.w, args.mu, args.kT)
+    kernels = load_law_kernels(args.law, args.search)
+    mu = default_mobility(kernels.mode) if args.mu is None else args.mu  # the mobility of the law's own mode
+    query = NoiseQuery(tuple(args.u), args.r, args.w, mu, args.kT)
     with named_by_flags({}):
-        result = evaluate(load_law_kernels(args.law, args.search), args.calculus, query, dict(args.param))
+        result = evaluate(kernels, args.calculus, query, dict(args.param))
     if args.json:
         print(dumps(result))
     else:
-        print(f"{args.law} ({args.calculus}), w = {result['w']:g}, mu = {args.mu:g}, kT = {args.kT:g}")
+        source = "--mu" if args.mu is not None else f"the {kernels.mode} mobility of two spheres m = 1, R = 1/2"
+        print(f"{args.law} ({args.calculus}, {kernels.mode} mode), w = {result['w']:g}, mu = {mu:g} ({source}), kT = {args.kT:g}")
         for x, fx, dx in zip(result["u"], result["f"], result["D"]):
             print(f"u = {x:12.6g}   f = {fx:12.6g}   D = {dx:.12g}")
     return 0
@@ -140,6 +144,7 @@ CHECK_FLAGS = {
 
 def _thermostat_check(args: argparse.Namespace) -> int:
     """fricgen thermostat-check LAW ...: the statistical test of a law's thermostat, as JSON."""
+    from ...kernels import load_law_kernels
     from ..run.build import resolve_law
     from ..studies.thermostat_check import passive_check, passive_run
 
@@ -147,6 +152,13 @@ def _thermostat_check(args: argparse.Namespace) -> int:
     laws.check_law_names(named, args.search)
     for name in named:
         laws.check_calculus(name, args.calculus, args.search)
+    own = load_law_kernels(args.law, args.search).mode
+    for mode in ("rolling", "spinning"):
+        if getattr(args, f"no_{mode}_noise") and getattr(args, mode) is None:
+            fix = f"give the {mode} law with --{mode} NAME, or leave --no-{mode}-noise away"
+            if own == mode:  # LAW is itself the mode's law: no --{mode} law to drop the noise of
+                fix = f"LAW {args.law} is itself a {mode} law, the only law here: drop its noise with --no-contact-noise"
+            raise ConfigError(f"--no-{mode}-noise", f"drops the noise of the law that --{mode} gives, and none is given", fix)
     options = {"dim": args.dim, "calculus": args.calculus, "contact_scheme": args.contact_scheme, "n": args.n, "phi": args.phi}
     options |= {"dt": args.dt, "kT": args.kT, "rolling": args.rolling, "spinning": args.spinning}
     for mode in ("rolling", "spinning"):
@@ -199,7 +211,7 @@ def _sweep(args: argparse.Namespace) -> int:
     """fricgen sweep SWEEP [--scheduler ADDRESS] [--workers N] [--out DIR] [--laws DIR] [--json]."""
     from ..sweep.runner import SweepRequest, run_sweep
 
-    return run_sweep(SweepRequest(args.sweep, args.out, args.scheduler, args.workers, args.search), args.json)
+    return run_sweep(SweepRequest(args.sweep, args.out, args.scheduler, args.workers, args.search, args.rerun_stale), args.json)
 
 
 def _bcd(args: argparse.Namespace) -> int:
@@ -210,8 +222,7 @@ def _bcd(args: argparse.Namespace) -> int:
     from ..studies.rods import Study, study
 
     values = {name: getattr(args, name) for name in _rod_fields()}
-    with named_by_flags(_rod_flags()), warnings.catch_warnings():
-        warnings.showwarning = _warning_line
+    with named_by_flags(_rod_flags()):
         config = rod_config(**{name: dict(value) if isinstance(value, list) else value for name, value in values.items()})
         summary = study(Study(config, args.time, args.equilibrate, args.extrapolate), Path(args.out), args.force)
     if args.json:
@@ -224,9 +235,10 @@ def _bcd(args: argparse.Namespace) -> int:
     return 0
 
 
-def _warning_line(message, category, filename, lineno, file=None, line=None) -> None:
-    """A warning of ``fricgen bcd`` as one line on stderr (not Python's two, with the source line)."""
-    print(f"fricgen bcd: warning: {' '.join(str(message).split())}", file=sys.stderr)
+def _warning_line(prog: str, message, category, filename, lineno, file=None, line=None) -> None:
+    """A warning of a command as one line on stderr, ``fricgen CMD: warning: ...`` (not Python's two,
+    with the source line)."""
+    print(f"{prog}: warning: {' '.join(str(message).split())}", file=sys.stderr)
 
 
 #: What each flag of ``fricgen bcd`` sets, in the rods' units (wavelength = 1, D = 1, kT = 1; time in
@@ -339,9 +351,14 @@ def parser() -> argparse.ArgumentParser:
         metavar="NAME=VALUE",
         help="a law parameter, repeatable (default: the law file's)",
     )
-    noise.add_argument("--mu", type=float, default=7.0, help="contact mobility, in 1/m (default 7: equal spheres m = 1, R = 1/2)")
+    noise.add_argument(
+        "--mu",
+        type=float,
+        help="mobility of the law's contact mode, in 1/m (default: that of two spheres m = 1, R = 1/2, I = (2/5) m R^2: 7 for a"
+        " sliding law, 1.25 for a rolling or spinning one)",
+    )
     noise.add_argument("--kT", type=float, default=1.0, help="thermal energy, in kT (default 1)")
-    noise.add_argument("--json", action="store_true", help="print JSON with u, D, f, w, r, mu, kT, parameters")
+    noise.add_argument("--json", action="store_true", help="print JSON with u, D, f, w, r, mu, kT, parameters and the law's mode")
     laws.add_laws_flag(noise)
     noise.set_defaults(run=_noise)
 
@@ -414,6 +431,11 @@ def parser() -> argparse.ArgumentParser:
     sweep.add_argument("--scheduler", metavar="ADDRESS", help="a running Dask scheduler, e.g. tcp://host:8786 (default: a local cluster)")
     sweep.add_argument("--workers", type=int, metavar="N", help="worker processes of the local cluster (default: one per CPU it may use)")
     sweep.add_argument("--out", metavar="DIR", help="output folder (default fricgen-sweep-<sweep name>)")
+    sweep.add_argument(
+        "--rerun-stale",
+        action="store_true",
+        help="run afresh the points whose checkpoints record other versions of their laws than this run's (default: refuse them)",
+    )
     sweep.add_argument("--json", action="store_true", help="print the results as JSON")
     laws.add_laws_flag(sweep)
     sweep.set_defaults(run=_sweep)
@@ -444,7 +466,9 @@ def main(argv: list[str] | None = None) -> int:
         prog = f"fricgen {args.command}"
         if hasattr(args, "law_folders"):  # a command that takes laws: its search, built here once
             args.search = laws.law_search(args)
-        status = args.run(args)
+        with warnings.catch_warnings():
+            warnings.showwarning = functools.partial(_warning_line, prog)
+            status = args.run(args)
         sys.stdout.flush()  # a closed stdout shows here, not in the interpreter's exit
         return status
     except UsageError as error:

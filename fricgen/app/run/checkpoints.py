@@ -89,3 +89,19 @@ def check_checkpoint(path: Path, key: str = "--resume") -> None:
         raise refuse("holds a configuration that is not JSON") from error
     if not isinstance(config, dict) or not isinstance(config.get("law"), dict):
         raise refuse("holds a configuration that is not a table with a law table")
+
+
+def recorded_laws(path: Path) -> list[list[str]] | None:
+    """The laws a checkpoint ran, ``[[name, source hash], ...]`` in the order of ``[law]`` (``name``,
+    then ``rolling`` and ``spinning`` where given: fricgen.langevin.trajectory.save_checkpoint records
+    them), or None where it records none (no checkpoint, not one of fricgen run, or written before
+    the hashes were recorded). A sweep's point is finished with this run's laws only if they match."""
+    try:
+        with np.load(Path(path), allow_pickle=False) as data:
+            if "law_hash" not in data.files:
+                return None
+            name = json.loads(str(data["config"]))["law"]["name"]
+            modes = json.loads(str(data["mode_laws"])) if "mode_laws" in data.files else []
+            return [[str(name), str(data["law_hash"])], *([str(mode), str(digest)] for mode, _, digest in modes)]
+    except (OSError, ValueError, KeyError, TypeError, EOFError, zipfile.BadZipFile):
+        return None

@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import stat
 import sys
 import tempfile
 from pathlib import Path
@@ -41,6 +42,26 @@ def check_folder(folder: Path, key: str) -> None:
             pass
     except OSError as error:
         raise ConfigError(key, f"cannot write into {folder}: {error.strerror or error}", "give a folder you can write into") from error
+
+
+#: The temporary files a run writes and renames into place (a checkpoint, the summary, a truncated trajectory).
+TEMPORARIES = (f"{CHECKPOINT}.tmp", f".{SUMMARY}.tmp", f"{TRAJECTORY}.tmp")
+
+
+def check_temporaries(folder: Path, key: str) -> None:
+    """No temporary file of a run (:data:`TEMPORARIES`) in ``folder`` is anything but a regular file:
+    a folder there would end the run in an error after its last step, a symbolic link would have the
+    run write through it into another file. ConfigError at ``key`` otherwise, before anything runs."""
+    for name in TEMPORARIES:
+        try:
+            mode = os.lstat(Path(folder) / name).st_mode
+        except FileNotFoundError:
+            continue
+        except OSError as error:
+            raise ConfigError(key, f"cannot read {Path(folder) / name}: {error.strerror or error}", "give another folder") from error
+        if not stat.S_ISREG(mode):
+            kind = "a symbolic link" if stat.S_ISLNK(mode) else "a folder" if stat.S_ISDIR(mode) else "not a regular file"
+            raise ConfigError(key, f"{Path(folder) / name} is {kind}, in the way of a file the run writes there", "move it away")
 
 
 def finite(data):

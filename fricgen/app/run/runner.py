@@ -34,7 +34,7 @@ from .build import build, check
 from .checkpoints import check_checkpoint
 from .config import OBSERVABLES, RunConfig, load_config, parse_override, resolve_source
 from .observables import Periodic, observable_table, read_table, series_summary, truncate_table
-from .outputs import CHECKPOINT, CONFIG, SUMMARY, TRAJECTORY, check_folder, dumps
+from .outputs import CHECKPOINT, CONFIG, SUMMARY, TRAJECTORY, check_folder, check_temporaries, dumps
 from .progress import ProgressBar, RunInterrupted, StopOnInterrupt
 from .registry import STUDIES, Study
 
@@ -92,6 +92,7 @@ def _plan(config: RunConfig, command: list[str], out: str | None, resume: str | 
     if resume is None:
         folder = Path(out) if out else Path(f"fricgen-{name}")
         check_folder(folder, "--out")
+        check_temporaries(folder, "--out")
         taken = [name for name in RUN_FILES if (folder / name).exists()]
         if taken:
             raise ConfigError(
@@ -106,6 +107,7 @@ def _plan(config: RunConfig, command: list[str], out: str | None, resume: str | 
     if out and Path(out).resolve() != checkpoint.parent.resolve():
         raise ConfigError("--out", f"{out} is not the folder of the checkpoint {checkpoint}", "leave --out away when resuming")
     check_folder(checkpoint.parent, "--resume")
+    check_temporaries(checkpoint.parent, "--resume")
     check_checkpoint(checkpoint)
     fresh = build(config, search)
     try:

@@ -4,17 +4,20 @@ Everything is checked before the output folder is touched: the sweep file
 (:mod:`fricgen.app.sweep.config`), every point's configuration by the runner's
 :func:`~fricgen.app.run.runner.check_run` (the file, the overrides, the law and the box, as a fresh
 run is checked; no simulation is built), and that a finished point's folder holds a run of the same
-configuration. A checkpoint that its configuration cannot resume is refused by the point's own run
-(its run.log says why). The points that are not finished run on a ``distributed.LocalCluster``
+configuration and ran this run's laws: the law hashes that its checkpoint records, for every
+mode, are those of the laws and kernels of this run. A point that ran another version of its laws
+(a law file edited and regenerated since) is stale: the sweep refuses on one line listing the stale
+points, and ``--rerun-stale`` runs them afresh. A point's folder is a real folder inside the
+output, never a symbolic link. A checkpoint that its configuration cannot resume is refused by the
+point's own run (its run.log says why). The points that are not finished run on a ``distributed.LocalCluster``
 (one single-threaded worker process per CPU this process may use, or ``--workers``) or on the
 workers of a running scheduler (``--scheduler``); :mod:`fricgen.app.sweep.task` says what a point
-does in its worker. A point with its summary.json is never run again, so the same command after a
+does in its worker. A point with its summary.json and this run's laws is never run again, so the same command after a
 Ctrl-C or a lost worker completes only what is missing. Outputs: ``OUT/<point>/`` (the run and its
 ``run.log``), ``OUT/sweep.json`` (the points and their overrides), ``OUT/results.csv`` and
 ``OUT/phase_diagram.png`` (:mod:`fricgen.app.sweep.results`). Exit status: 0 every point done, 1 a
 point failed (blew up), 2 a bad sweep file, 130 interrupted.
 """
-
 
 from __future__ import annotations
 
@@ -34,8 +37,10 @@ from tqdm import tqdm
 from fricgen.derive.law.catalogues import BUILT_IN, LawSearch
 
 from ...errors import ConfigError
+from ..run.build import resolve_law
+from ..run.checkpoints import recorded_laws
 from ..run.config import RunConfig
-from ..run.outputs import CONFIG, check_folder, dumps
+from ..run.outputs import CHECKPOINT, CONFIG, check_folder, check_temporaries, dumps
 from ..run.runner import RUN_FILES, check_run
 from .config import Point, Sweep, flatten, load_sweep
 from .results import phase_diagram, result_row, write_table
@@ -56,6 +61,7 @@ class SweepRequest:
     scheduler: str | None = None
     workers: int | None = None
     search: LawSearch = BUILT_IN
+    rerun_stale: bool = False
 
 
 def run_sweep(request: SweepRequest, as_json: bool = False) -> int:
@@ -65,8 +71,17 @@ def run_sweep(request: SweepRequest, as_json: bool = False) -> int:
     out = Path(request.out or f"fricgen-sweep-{sweep.name}").absolute()
     check_folder(out, "--out")
     workers = _workers(request)
+    _check_scheme(request.scheduler)
     points = sweep.points()
     specs = {point.name: _check_point(sweep, point, out / point.name, request.search) for point in points}
+    stale = [name for name, spec in specs.items() if spec is not None and spec["stale"]]
+    if stale and not request.rerun_stale:
+        raise ConfigError(
+            "law",
+            f"{len(stale)} point(s) of {out} ran another version of their laws than this run's (the law hashes their checkpoints"
+            f" record differ, or they record none): {', '.join(stale)}",
+            "rerun them with --rerun-stale (a finished one keeps its old summary as summary-stale.json), or give another --out",
+        )
     todo = [spec for spec in specs.values() if spec is not None]
     try:
         with _client(request.scheduler, min(workers, len(todo))) if todo else contextlib.nullcontext() as client:
@@ -104,26 +119,56 @@ def _workers(request: SweepRequest) -> int:
 
 def _check_point(sweep: Sweep, point: Point, folder: Path, search: LawSearch) -> dict | None:
     """The task's spec of a point (:func:`~fricgen.app.sweep.task.run_point`), None if it is
-    finished; ConfigError (named by the point) if its configuration or its finished run does not fit."""
+    finished with this run's laws; ConfigError (named by the point) if its configuration or its
+    finished run does not fit. A run in its folder (finished or not) that ran other laws than this
+    run's (the law hashes its checkpoint records, :func:`~fricgen.app.run.checkpoints.recorded_laws`,
+    for every mode) is stale: its spec says so, and its task starts it afresh."""
     try:
+        _check_point_folder(folder)
         check_folder(folder, "--out")
+        check_temporaries(folder, "--out")
         config = check_run(sweep.base, list(point.settings), search)
-        if folder_state(folder, config.run.steps) == "done":
+        laws = [[law.kernels.name, law.kernels.source_hash] for law in resolve_law(config.law, config.system.dimension, search).laws]
+        state = folder_state(folder, config.run.steps)
+        if state == "done":
             _check_finished(folder, config.as_dict())
-            return None
-        if any((folder / name).exists() or (folder / name).is_symlink() for name in RUN_FILES):
+        elif any((folder / name).exists() or (folder / name).is_symlink() for name in RUN_FILES):
             # its task resumes it (to more steps, maybe) or restarts it
             _check_finished(folder, config.as_dict(), "an unfinished run", ("run.steps",))
+        stale = state != "fresh" and recorded_laws(folder / CHECKPOINT) != laws
+        if state == "done" and not stale:
+            return None
     except ConfigError as error:
         raise ConfigError(f"point {point.name}: {error.key}", error.problem, error.fix) from error
     return {
         "name": point.name,
         "folder": str(folder),
         "steps": config.run.steps,
+        "law_hashes": laws,
+        "stale": stale,
         "base": sweep.base,
         "settings": list(point.settings),
         "laws": [str(path) for path in search.folders],  # the search, as data: the task's edge rebuilds it
     }
+
+
+def _check_point_folder(folder: Path) -> None:
+    """A point's folder is a real folder inside the sweep's output, or absent, with a name the file
+    system allows: never a symbolic link (to a sibling, whose run would count twice, or dangling)."""
+    if folder.is_symlink():
+        raise ConfigError(
+            "--out",
+            f"{folder} is a symbolic link (to {os.readlink(folder)}), not a point's own folder",
+            "remove the link: each point runs in a real folder of its own inside the sweep's output",
+        )
+    existing = next(parent for parent in folder.parents if parent.is_dir())
+    limit = os.pathconf(existing, "PC_NAME_MAX")
+    if len(os.fsencode(folder.name)) > limit:
+        raise ConfigError(
+            "grid",
+            f"the point's folder name is {len(os.fsencode(folder.name))} bytes long, more than the file system allows ({limit})",
+            "use shorter values, or a named axis whose value names are short (docs/sweeps.md)",
+        )
 
 
 def _newer_default(key: str, value) -> bool:
@@ -148,13 +193,17 @@ def _check_finished(folder: Path, wanted: dict, what: str = "a finished run", fr
     at its default."""
     try:
         stored = json.loads((folder / CONFIG).read_text())
-    except (OSError, ValueError):
+    except FileNotFoundError:
         stored = None
-    if not isinstance(stored, dict):
+    except (OSError, ValueError) as error:  # cut short, garbled, not a file
+        problem = error.strerror if isinstance(error, OSError) and error.strerror else "not a JSON table (cut short?)"
         raise ConfigError(
-            "--out",
-            f"{folder} holds files of a run without its {CONFIG} ({what} of another command?)",
-            "give another --out, or move them away",
+            "--out", f"{folder} holds {what} whose {CONFIG} cannot be read: {problem}", "give another --out, or delete that folder"
+        ) from error
+    if not isinstance(stored, dict):
+        problem = f"without its {CONFIG}" if stored is None else f"whose {CONFIG} is not a JSON table"
+        raise ConfigError(
+            "--out", f"{folder} holds files of a run {problem} ({what} of another command?)", "give another --out, or move them away"
         )
     stored.pop("command", None)
     there, here = flatten(stored), flatten(json.loads(dumps(wanted)))
@@ -187,6 +236,19 @@ def _client(scheduler: str | None, workers: int):
         yield client
 
 
+def _check_scheme(scheduler: str | None) -> None:
+    """A --scheduler address in one of Dask's schemes (tcp://, tls://, ...) or without one; ConfigError otherwise."""
+    from distributed.comm.registry import backends
+
+    scheme, separator, _ = (scheduler or "").rpartition("://")
+    if separator and scheme not in backends:
+        raise ConfigError(
+            "--scheduler",
+            f"{scheme}:// is not a scheme of Dask's ({', '.join(f'{name}://' for name in sorted(backends))})",
+            "give the scheduler's address as `dask scheduler` prints it, e.g. tcp://HOST:8786",
+        )
+
+
 def _connect(scheduler: str):
     """A client of the scheduler at ``scheduler`` within CONNECT_TIMEOUT seconds, or ConfigError.
 
@@ -198,6 +260,8 @@ def _connect(scheduler: str):
 
     from distributed import Client
 
+    fix = "start `dask scheduler` and `dask worker ADDRESS`, or leave --scheduler away"
+    sys.unraisablehook = _quiet_abandoned_clients
     made: dict = {}
 
     def connect() -> None:
@@ -206,7 +270,6 @@ def _connect(scheduler: str):
         except Exception as error:  # reported below, in the waiting thread
             made["error"] = error
 
-    fix = "start `dask scheduler` and `dask worker ADDRESS`, or leave --scheduler away"
     thread = threading.Thread(target=connect, name="fricgen-sweep-connect", daemon=True)
     thread.start()
     deadline = time.monotonic() + CONNECT_TIMEOUT
@@ -220,6 +283,14 @@ def _connect(scheduler: str):
     if error is not None:
         raise error
     return made["client"]
+
+
+def _quiet_abandoned_clients(unraisable, default=sys.unraisablehook) -> None:
+    """sys.unraisablehook once a client was made: a Dask client that never connected (an address that
+    does not answer as a scheduler, an HTTP server) fails again when it is collected, in its __del__,
+    which Python would print as a traceback after the one-line error; that one error is dropped."""
+    if getattr(unraisable.object, "__qualname__", "") != "Client.__del__":
+        default(unraisable)
 
 
 def _run(client, specs: list[dict], total: int) -> dict[str, dict]:

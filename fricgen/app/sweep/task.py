@@ -38,8 +38,9 @@ from fricgen.derive.errors import DeriveError
 from fricgen.derive.law.catalogues import LawSearch
 
 from ...errors import FricgenError
+from ..run.checkpoints import recorded_laws
 from ..run.outputs import CHECKPOINT, SUMMARY, fail
-from ..run.runner import RUN_FILES, execute, plan
+from ..run.runner import RUN_FILES, _free_name, execute, plan
 
 LOG, LOCK = "run.log", ".lock"
 #: Seconds between the watchdog's looks at its parent.
@@ -139,6 +140,10 @@ def _child(spec: dict) -> int:
     with _lock(folder):
         _begin_attempt(folder, spec["parent"])
         state = folder_state(folder, spec["steps"])
+        if state != "fresh" and recorded_laws(folder / CHECKPOINT) != spec["law_hashes"]:  # another version of its laws ran here
+            if finished(folder):
+                (folder / SUMMARY).replace(_free_name(folder, "summary-stale", ".json"))
+            state = "fresh"
         print(f"fricgen sweep: point {spec['name']}: {state}", flush=True)
         if state == "done":
             return 0
