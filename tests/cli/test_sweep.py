@@ -131,7 +131,7 @@ def test_every_study_of_the_docs_checks_point_by_point(path):
     points = study.points()
     assert len(points) == len({point.name for point in points}) > 1
     for point in points:
-        assert check_run(study.base, list(point.settings), ()).run.steps > 0
+        assert check_run(study.base, list(point.settings)).run.steps > 0
 
 
 @pytest.fixture(scope="module")
