@@ -333,7 +333,7 @@ def test_a_checkpoint_of_all_modes_resumes_bit_identically(laws, tmp_path):
     again.advance(50)
     assert np.array_equal(arrays(again), arrays(whole))
     other = dataclasses.replace(laws["spinning_linear"])
-    object.__setattr__(other, "module", type("M", (), {**vars(laws["spinning_linear"].module), "SOURCE_HASH": "0" * 64})())
+    object.__setattr__(other, "module", types.SimpleNamespace(**{**vars(laws["spinning_linear"].module), "SOURCE_HASH": "0" * 64}))
     with pytest.raises(ConfigError, match="the checkpoint ran .*spinning_linear.toml"):
         fricgen.langevin.load_checkpoint(tmp_path / "c.npz", law=[laws["coulomb_newton"], laws["rolling_linear"], other])
 
@@ -359,11 +359,15 @@ gamma_r = 2.0
 """
     path = tmp_path / "run.toml"
     path.write_text(text)
-    assert [k.name for k in resolve_law(load_config(path))] == ["coulomb_newton", "rolling_linear", "spinning_linear"]
+    def resolve(path):
+        config = load_config(path)
+        return resolve_law(config.law, config.system.dimension)
+
+    assert resolve(path).names == ["coulomb_newton", "rolling_linear", "spinning_linear"]
     path.write_text(text.replace("dimension = 3", "dimension = 2"))
     with pytest.raises(ConfigError, match="^law.spinning: law spinning_linear acts on spinning, which does not exist in 2-D"):
-        resolve_law(load_config(path))
+        resolve(path)
     swapped = text.replace('rolling = "rolling_linear"', 'rolling = "spinning_linear"').replace('spinning = "spinning_linear"\n', "")
     path.write_text(swapped.split("[law.rolling_parameters]")[0])
     with pytest.raises(ConfigError, match="^law.rolling: law spinning_linear acts on the spinning mode, not rolling"):
-        resolve_law(load_config(path))
+        resolve(path)
