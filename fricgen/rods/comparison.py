@@ -3,13 +3,28 @@ deviations of a measured profile from it (docs/physics.md#exact-theory-of-rods).
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from ..errors import ConfigError
 from .config import RodConfig
 from .interactions import field_energy, on_arrays, pair_kernels
-from .simulation import RodProfiles
 from .theory import HARD_RODS, Neighbours, RodProfile, rod_profile
+
+
+@dataclass(frozen=True)
+class RodProfiles:
+    """Profiles over one wavelength at bin centres x: rho, rho_2 at contact, their standard errors, and the
+    covariance of the contact estimates between bins (from the replicas; None: not known)."""
+
+    x: np.ndarray
+    rho: np.ndarray
+    rho_err: np.ndarray
+    contact: np.ndarray
+    contact_err: np.ndarray
+    steps: int
+    contact_cov: np.ndarray | None = None
 
 
 def exact_profile(config: RodConfig) -> RodProfile:

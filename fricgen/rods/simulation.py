@@ -26,12 +26,12 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass
 
 import numpy as np
 
 from ..errors import ConfigError, SimulationError
 from . import bcd, mc
+from .comparison import RodProfiles, compressibility
 from .config import CONTACT_LAYERS, RodConfig
 from .interactions import field_kernels, pair_kernels, stability_ratio
 from .records import Ring, Stepping
@@ -40,20 +40,6 @@ from .records import Ring, Stepping
 #: compiled loop cannot be interrupted, so Ctrl-C takes effect between calls. The noise is keyed on
 #: the step, so any chunking gives the same trajectory bit for bit.
 CHUNK_STEPS = 20_000
-
-
-@dataclass(frozen=True)
-class RodProfiles:
-    """Profiles over one wavelength at bin centres x: rho, rho_2 at contact, their standard errors, and the
-    covariance of the contact estimates between bins (from the replicas; None: not known)."""
-
-    x: np.ndarray
-    rho: np.ndarray
-    rho_err: np.ndarray
-    contact: np.ndarray
-    contact_err: np.ndarray
-    steps: int
-    contact_cov: np.ndarray | None = None
 
 
 class RodSimulation:
@@ -83,8 +69,6 @@ class RodSimulation:
         """Rods with Gamma-distributed gaps (fricgen.rods.mc.free_rods) whose long density waves have the exact
         theory's chi, shape = chi_0 / chi: the fluctuations that the Monte Carlo sweeps relax only over ~1e4
         sweeps (free hard rods, shape 1, where the theory cannot be solved: a sigma / lambda off its grids)."""
-        from .comparison import compressibility  # it imports this module
-
         m = self.config.model
         try:
             shape = m.mean_density * (1 - m.mean_density * m.sigma) ** 2 / compressibility(self.config)
