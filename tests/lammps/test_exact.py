@@ -75,18 +75,29 @@ def split_spheres(dim: int):
     return position, velocity, omega
 
 
-def lammps_run(lammps, plugin, folder, law: str, dim: int, noise: bool, ranks: int = 1):
-    box, coordinates = (BOX, spheres(dim)) if ranks == 1 else (12.0, split_spheres(dim))
-    data_file(folder / "data.spheres", box, dim, *coordinates)
+def _dynamics(plugin, law: str, dim: int, noise: bool) -> str:
+    """The input lines after the atoms: no pair force, fix nve/sphere and the fix (every step reneighboured)."""
     parameters = " ".join(f"{k} {v!r}" for k, v in LAWS[law].items())
-    script = (
-        f"units lj\ndimension {dim}\natom_style sphere\natom_modify map array\nboundary p p p\n"
-        + ("processors 2 1 1\n" if ranks == 2 else "")
-        + f"read_data data.spheres\nset type 1 mass 1.0\nplugin load {plugin}\npair_style zero 1.2\npair_coeff * *\n"
+    return (
+        f"plugin load {plugin}\npair_style zero 1.2\npair_coeff * *\n"
         "comm_modify vel yes\nneighbor 0.3 bin\nneigh_modify every 1 delay 0 check no\nfix 1 all nve/sphere\n"
         + ("fix 3 all enforce2d\n" if dim == 2 else "")
         + f"fix 2 all fricgen/exact/{law} {KT!r} {SEED} noise {'yes' if noise else 'no'} epsilon {EPSILON!r} {parameters}\n"
-        f"timestep {DT!r}\n" + dump_lines("dump.steps") + f"run {STEPS}\n"
+        f"timestep {DT!r}\n"
+    )
+
+
+def lammps_run(lammps, plugin, folder, law: str, dim: int, noise: bool, ranks: int = 1, newton: str = "on", runs: str = ""):
+    """STEPS steps dumped every step (or the input lines ``runs`` after the dump) from the nine spheres."""
+    box, coordinates = (BOX, spheres(dim)) if ranks == 1 else (12.0, split_spheres(dim))
+    data_file(folder / "data.spheres", box, dim, *coordinates)
+    script = (
+        f"units lj\ndimension {dim}\natom_style sphere\natom_modify map array\nboundary p p p\nnewton {newton}\n"
+        + ("processors 2 1 1\n" if ranks == 2 else "")
+        + "read_data data.spheres\nset type 1 mass 1.0\n"
+        + _dynamics(plugin, law, dim, noise)
+        + dump_lines("dump.steps")
+        + (runs or f"run {STEPS}\n")
     )
     output = run(lammps, folder, script, ranks=ranks)
     assert f"on {ranks} procs" in output or ranks == 1
@@ -118,12 +129,13 @@ def test_one_rank_is_the_engines_step(lammps, plugin, tmp_path, law, dim, noise)
     assert deviation(snapshots, engine_steps(law, dim, noise, snapshots)) < 1e-12
 
 
+@pytest.mark.parametrize("newton", ["on", "off"])
 @pytest.mark.parametrize("dim", [2, 3])
-def test_two_ranks_are_the_engines_step_phase_by_phase(lammps, plugin, tmp_path, dim):
+def test_two_ranks_are_the_engines_step_phase_by_phase(lammps, plugin, tmp_path, dim, newton):
     """processors 2 1 1 in a box of 12: rank 0 holds x < 6; the phase of an atom is 0 in the lower half of its
     rank's sub-domain (x mod 6 < 3), 1 in the upper. The triangle's pair (6, 7) runs first, in phase 0, where
     one rank would take it last (colour 2): the phases change the sweep, and the test sees it."""
-    snapshots = lammps_run(lammps, plugin("coulomb_newton"), tmp_path, "coulomb_newton", dim, True, ranks=2)
+    snapshots = lammps_run(lammps, plugin("coulomb_newton"), tmp_path, "coulomb_newton", dim, True, ranks=2, newton=newton)
     assert moved(snapshots) > 0.05
 
     def phases(position):
@@ -233,3 +245,25 @@ def test_the_fix_keeps_kT_at_dt_5e_3(lammps, plugin, tmp_path, ranks):
 def test_without_its_noise_the_fix_cools(lammps, plugin, tmp_path):
     found = sampled(run(lammps, tmp_path, free_flight(plugin("coulomb_newton"), noise=False, steps=2000)))
     assert found["T_trans"][0] < 0.5 and found["T_rot"][0] < 0.5, found
+
+
+def test_a_restart_continues_the_same_trajectory(lammps, plugin, tmp_path):
+    """3 steps, write_restart, read_restart (the fix given again), 3 steps: the velocities and spins of 6 steps in
+    one run, bit for bit (2 ranks, 3-D)."""
+    library = plugin("coulomb_newton")
+    whole = lammps_run(lammps, library, tmp_path, "coulomb_newton", 3, True, ranks=2)
+    first = tmp_path / "first"
+    first.mkdir()
+    lammps_run(lammps, library, first, "coulomb_newton", 3, True, ranks=2, runs=f"run {STEPS // 2}\nwrite_restart restart.half\n")
+    (tmp_path / "second").mkdir()
+    script = (
+        f"atom_modify map array\nprocessors 2 1 1\nread_restart {first / 'restart.half'}\n"
+        + _dynamics(library, "coulomb_newton", 3, True)
+        + dump_lines("dump.steps")
+        + f"run {STEPS // 2}\n"
+    )
+    run(lammps, tmp_path / "second", script, ranks=2)
+    continued = read_dump(tmp_path / "second" / "dump.steps")[STEPS]
+    assert moved(whole) > 0.05
+    for columns in (("vx", "vy", "vz"), ("omegax", "omegay", "omegaz")):
+        assert np.array_equal(vectors(continued, *columns), vectors(whole[STEPS], *columns)), columns
