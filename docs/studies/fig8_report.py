@@ -11,6 +11,7 @@ the dip ratio and the frames passing the strict criterion beside each point). Us
 folder that holds the sweep's output)::
 
     nice -n 10 python docs/studies/fig8_report.py out/fig8_coarse/*/ --results docs/studies/results
+    nice -n 10 python docs/studies/fig8_report.py out/fig8_baseline/*/ --name fig8_baseline   # the frictionless scan
 
 Folders without summary.json (still running) are listed as not finished and skipped.
 """
@@ -32,11 +33,12 @@ def verdict(run: dict) -> str:
 
 def phase_figure(runs: list[dict], path) -> None:
     """F0 against area fraction, one panel per model, each point marked by its verdict."""
-    figure = Figure(figsize=(12, 4), layout="constrained")
-    axes = figure.subplots(1, len(MODELS), sharex=True, sharey=True)
+    models = [model for model in MODELS if any(run["model"] == model for run in runs)]  # a panel per model run
+    figure = Figure(figsize=(4 * len(models), 4), layout="constrained")
+    axes = figure.subplots(1, len(models), sharex=True, sharey=True, squeeze=False)[0]
     style = {"separated": {"marker": "o", "color": "C3"}, "bimodal": {"marker": "o", "facecolors": "none", "edgecolors": "C3"}}
     style["mixed"] = {"marker": "x", "color": "C0"}
-    for axis, model in zip(axes, MODELS):
+    for axis, model in zip(axes, models):
         for run in (r for r in runs if r["model"] == model):
             axis.scatter(run["packing_fraction"], run["F0"], s=90, **style[verdict(run)])
             dip = run["pooled"]["dip_ratio"]
@@ -46,16 +48,16 @@ def phase_figure(runs: list[dict], path) -> None:
         axis.set_title(model)
         axis.set_xlabel("area fraction")
     axes[0].set_ylabel("F0 (kT / sigma)")
-    figure.suptitle("filled: strictly separated, open: bimodal only, x: neither; dip ratio (frames passing / frames), second half pooled")
+    figure.suptitle("filled: strictly separated, open: bimodal only, x: neither;\ndip ratio (frames passing / frames), second half pooled")
     figure.savefig(path, dpi=110)
 
 
 def main(argv: list[str] | None = None) -> None:
-    args = arguments(argv, __doc__.splitlines()[0], DEFAULT)
+    args = arguments(argv, __doc__.splitlines()[0], DEFAULT, name="fig8")
     runs, pending = finished_runs(args.folders, analyse)
     runs.sort(key=lambda run: (MODELS.index(run["model"]), run["F0"], run["packing_fraction"]))
-    write_record(args.results / "fig8.json", [{**run, "verdict": verdict(run)} for run in runs], pending)
-    phase_figure(runs, args.results / "fig8.png")
+    write_record(args.results / f"{args.name}.json", [{**run, "verdict": verdict(run)} for run in runs], pending)
+    phase_figure(runs, args.results / f"{args.name}.png")
 
 
 if __name__ == "__main__":

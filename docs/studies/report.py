@@ -188,12 +188,15 @@ def table_row(run: dict) -> str:
     return "| " + " | ".join(str(cell) for cell in cells) + " |"
 
 
-def arguments(argv: list[str] | None, description: str, default: tuple[str, ...]) -> argparse.Namespace:
+def arguments(argv: list[str] | None, description: str, default: tuple[str, ...], name: str | None = None) -> argparse.Namespace:
     """The command line of a report script: ``folders`` (the glob patterns ``default`` when none are
-    given) and ``--results`` (default: results/ beside this file)."""
+    given), ``--results`` (default: results/ beside this file) and, where ``name`` is given, ``--name``
+    (the stem of the files written, default ``name``)."""
     parser = argparse.ArgumentParser(description=description)
     parser.add_argument("folders", nargs="*", help=f"run folders (default: {' '.join(default)})")
     parser.add_argument("--results", type=Path, default=Path(__file__).parent / "results")
+    if name is not None:
+        parser.add_argument("--name", default=name, help=f"the stem of the files written (default: {name})")
     args = parser.parse_args(argv)
     args.folders = [Path(f) for f in args.folders] or sorted(p for pattern in default for p in Path().glob(pattern))
     return args
