@@ -226,11 +226,11 @@ def write_record(path: Path, runs: list[dict], pending: list[str]) -> None:
 
 
 def main(argv: list[str] | None = None) -> None:
-    """Analyse the folders given (default: out/fig7/*/), write fig7.json and fig7_dip_vs_time.png."""
-    args = arguments(argv, __doc__.splitlines()[0], DEFAULT)
+    """Analyse the folders given (default: out/fig7/*/), write NAME.json and NAME_dip_vs_time.png (NAME: --name, fig7)."""
+    args = arguments(argv, __doc__.splitlines()[0], DEFAULT, name="fig7")
     runs, pending = finished_runs(args.folders, analyse)
-    write_record(args.results / "fig7.json", runs, pending)
-    dip_figure(runs, args.results / "fig7_dip_vs_time.png")
+    write_record(args.results / f"{args.name}.json", runs, pending)
+    dip_figure(runs, args.results / f"{args.name}_dip_vs_time.png")
 
 
 if __name__ == "__main__":
