@@ -183,17 +183,17 @@ def test_names_that_become_one_name_in_code_clash():
 
 
 def test_a_plugin_refuses_a_class_built_for_another_law():
-    """The plugin's creator compares what its object says it was built for with its own law and hash
-    (the class of a plugin loaded earlier with the same class name says another): in the committed plugin
-    of linear, which tests/lammps/test_generated.py keeps what the generator prints."""
+    """A plugin, when loaded, compares what its class says it was built for with its own law and hash (the
+    class of a plugin loaded earlier with the same class name says another): in the committed plugin of
+    linear, which tests/lammps/test_generated.py keeps what the generator prints."""
     from fricgen.derive.law.catalogues import GENERATED
 
     files = {path.name: path.read_text() for path in (GENERATED / "lammps" / "linear").iterdir()}
     digest = re.search(r"Source hash: (\w+)", files["pair_fricgen_linear.cpp"]).group(1)
     built_for = f'"linear {digest}"'
     assert f"return {built_for};" in files["pair_fricgen_linear.cpp"]
-    assert f"std::strcmp(pair->built_for(), {built_for}) != 0" in files["fricgen_linear_plugin.cpp"]
-    assert "virtual const char *built_for() const;" in files["pair_fricgen_linear.h"]
+    assert f"std::strcmp(PairFricgenLinear::built_for(), {built_for}) != 0" in files["fricgen_linear_plugin.cpp"]
+    assert "static const char *built_for();" in files["pair_fricgen_linear.h"]
 
 
 def test_noise_uses_the_mobility_of_the_law_s_mode(capsys):

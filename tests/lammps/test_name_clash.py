@@ -1,6 +1,6 @@
 """Two plugins whose laws' names become one C++ class (fricgen.derive.law.names), loaded into one LAMMPS:
-the second plugin's creator gets the first one's object (LAMMPS loads plugins with global symbols)
-and refuses it with a LAMMPS error instead of running the other law.
+the second plugin's code resolves the class to the first one's (LAMMPS loads plugins with global
+symbols), and loading it fails with a LAMMPS error instead of its styles running the other law.
 
 fricgen refuses such a pair of laws before it writes a plugin, so the second plugin is the committed
 plugin of linear with its law renamed Linear (style fricgen/Linear, files and target fricgen_Linear,
@@ -13,7 +13,7 @@ import shutil
 
 import pytest
 
-from fricgen.app.cli.lammps import _cmake, _tool
+from fricgen.app.cli.lammps import _cmake, _tool, sources_hash
 from fricgen.derive.law.catalogues import GENERATED
 
 from .conftest import BUILD_ROOT
@@ -39,7 +39,7 @@ def renamed(lammps):
     """The .so of linear's plugin renamed Linear (its class unchanged), built once per session."""
     source = GENERATED / "lammps" / "linear"
     digest = re.search(r"Source hash: (\w+)", (source / "pair_fricgen_linear.cpp").read_text()).group(1)
-    folder = BUILD_ROOT / f"renamed-{digest[:16]}"
+    folder = BUILD_ROOT / f"renamed-{sources_hash(source, lammps)[:16]}"
     plugin = folder / "build" / "fricgen_Linear.so"
     if not plugin.is_file():
         shutil.rmtree(folder, ignore_errors=True)
@@ -61,5 +61,5 @@ def test_a_plugin_refuses_the_class_of_another_law(lammps, plugin, renamed, tmp_
     run(lammps, alone, SCRIPT.format(loads=f"plugin load {renamed}", style="Linear"))  # the control: alone it runs
     both = tmp_path / "both"
     both.mkdir()
-    with pytest.raises(AssertionError, match="its class PairFricgenLinear runs the code of law linear"):
+    with pytest.raises(AssertionError, match="plugin fricgen/Linear: its class PairFricgenLinear holds the code of law linear"):
         run(lammps, both, SCRIPT.format(loads=f"plugin load {first}\nplugin load {renamed}", style="Linear"))

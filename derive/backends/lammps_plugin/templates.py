@@ -46,7 +46,7 @@ class ${cls} : public Pair {
   void coeff(int, char **) override;
   void init_style() override;
   double init_one(int, int) override;
-  virtual const char *built_for() const;    // "<law> <source hash>": the plugin's creator checks it
+  static const char *built_for();    // "<law> <source hash>": checked when the plugin is loaded
 
  protected:
   double kT, inertia;
@@ -109,7 +109,7 @@ ${potential}
 ${kernels}
 }    // namespace
 
-const char *${cls}::built_for() const
+const char *${cls}::built_for()
 {
   return "${built_for}";
 }
@@ -364,20 +364,20 @@ PLUGIN = Template("""#include "lammpsplugin.h"
 ${fix_include}
 using namespace LAMMPS_NS;
 
-// Two plugins whose laws' names become one C++ class (fricgen.derive.law.names) would share it: LAMMPS
-// loads plugins with their symbols global, so this creator would make the first plugin's object and
-// the style run another law. It refuses that: the object must say it was built for this law.
 static Pair *creator(LAMMPS *lmp)
 {
-  ${cls} *pair = new ${cls}(lmp);
-  if (std::strcmp(pair->built_for(), "${built_for}") != 0)
-    lmp->error->all(FLERR, "pair_style fricgen/${law}: its class ${cls} runs the code of law {} (a plugin loaded "
-                    "earlier defines the same class): load one of the two, or rename a law", pair->built_for());
-  return pair;
+  return new ${cls}(lmp);
 }
 ${fix_creator}
+// Two plugins whose laws' names become one C++ class (fricgen.derive.law.names) would share it: LAMMPS
+// loads plugins with their symbols global, so this plugin's styles would make the first plugin's
+// objects and run another law. Loading refuses that: the class must say it was built for this law.
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
+  if (std::strcmp(${cls}::built_for(), "${built_for}") != 0)
+    static_cast<LAMMPS *>(lmp)->error->all(FLERR, "plugin fricgen/${law}: its class ${cls} holds the code of law {} (a plugin "
+                                           "loaded earlier defines the same class): load one of the two, or rename a law",
+                                           ${cls}::built_for());
   lammpsplugin_t plugin;
   auto register_plugin = (lammpsplugin_regfunc) regfunc;
   plugin.version = static_cast<LAMMPS *>(lmp)->version;    // the running LAMMPS: no version.h needed

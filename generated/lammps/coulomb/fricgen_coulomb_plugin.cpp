@@ -14,24 +14,24 @@
 
 using namespace LAMMPS_NS;
 
-// Two plugins whose laws' names become one C++ class (fricgen.derive.law.names) would share it: LAMMPS
-// loads plugins with their symbols global, so this creator would make the first plugin's object and
-// the style run another law. It refuses that: the object must say it was built for this law.
 static Pair *creator(LAMMPS *lmp)
 {
-  PairFricgenCoulomb *pair = new PairFricgenCoulomb(lmp);
-  if (std::strcmp(pair->built_for(), "coulomb 72c6901bf2fb38e73b37f255af5db496594bcd5ab7af90c94bb6567ec25dde72") != 0)
-    lmp->error->all(FLERR, "pair_style fricgen/coulomb: its class PairFricgenCoulomb runs the code of law {} (a plugin loaded "
-                    "earlier defines the same class): load one of the two, or rename a law", pair->built_for());
-  return pair;
+  return new PairFricgenCoulomb(lmp);
 }
 static Fix *fix_creator(LAMMPS *lmp, int argc, char **argv)
 {
   return new FixFricgenCoulomb(lmp, argc, argv);
 }
 
+// Two plugins whose laws' names become one C++ class (fricgen.derive.law.names) would share it: LAMMPS
+// loads plugins with their symbols global, so this plugin's styles would make the first plugin's
+// objects and run another law. Loading refuses that: the class must say it was built for this law.
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
+  if (std::strcmp(PairFricgenCoulomb::built_for(), "coulomb 72c6901bf2fb38e73b37f255af5db496594bcd5ab7af90c94bb6567ec25dde72") != 0)
+    static_cast<LAMMPS *>(lmp)->error->all(FLERR, "plugin fricgen/coulomb: its class PairFricgenCoulomb holds the code of law {} (a plugin "
+                                           "loaded earlier defines the same class): load one of the two, or rename a law",
+                                           PairFricgenCoulomb::built_for());
   lammpsplugin_t plugin;
   auto register_plugin = (lammpsplugin_regfunc) regfunc;
   plugin.version = static_cast<LAMMPS *>(lmp)->version;    // the running LAMMPS: no version.h needed

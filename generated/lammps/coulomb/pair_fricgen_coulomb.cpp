@@ -204,7 +204,7 @@ inline double noise_amplitude_ito(double u, double w, double r, double mu, doubl
 
 }    // namespace
 
-const char *PairFricgenCoulomb::built_for() const
+const char *PairFricgenCoulomb::built_for()
 {
   return "coulomb 72c6901bf2fb38e73b37f255af5db496594bcd5ab7af90c94bb6567ec25dde72";
 }

@@ -216,7 +216,7 @@ inline double noise_amplitude_ito(double u, double w, double r, double mu, doubl
 
 }    // namespace
 
-const char *PairFricgenCoulombNewton::built_for() const
+const char *PairFricgenCoulombNewton::built_for()
 {
   return "coulomb_newton 50e8ad3928d3c06ad08ebe539cc907acea0f9d3e9ad94eeeb2febb4c6cdb1b1d";
 }

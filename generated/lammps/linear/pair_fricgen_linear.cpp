@@ -205,7 +205,7 @@ inline double noise_amplitude_ito(double u, double w, double r, double mu, doubl
 
 }    // namespace
 
-const char *PairFricgenLinear::built_for() const
+const char *PairFricgenLinear::built_for()
 {
   return "linear 98b6023b8594e314d9e3cb906ccdcd91a7aa969f6aac8a925ef4626c0dc68070";
 }

@@ -13,20 +13,20 @@
 
 using namespace LAMMPS_NS;
 
-// Two plugins whose laws' names become one C++ class (fricgen.derive.law.names) would share it: LAMMPS
-// loads plugins with their symbols global, so this creator would make the first plugin's object and
-// the style run another law. It refuses that: the object must say it was built for this law.
 static Pair *creator(LAMMPS *lmp)
 {
-  PairFricgenRollingCoulombNewton *pair = new PairFricgenRollingCoulombNewton(lmp);
-  if (std::strcmp(pair->built_for(), "rolling_coulomb_newton b06446e48d09d3540c5bdd6e38d4d345cc3ca66519f71ace7e94526757b3a088") != 0)
-    lmp->error->all(FLERR, "pair_style fricgen/rolling_coulomb_newton: its class PairFricgenRollingCoulombNewton runs the code of law {} (a plugin loaded "
-                    "earlier defines the same class): load one of the two, or rename a law", pair->built_for());
-  return pair;
+  return new PairFricgenRollingCoulombNewton(lmp);
 }
 
+// Two plugins whose laws' names become one C++ class (fricgen.derive.law.names) would share it: LAMMPS
+// loads plugins with their symbols global, so this plugin's styles would make the first plugin's
+// objects and run another law. Loading refuses that: the class must say it was built for this law.
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
+  if (std::strcmp(PairFricgenRollingCoulombNewton::built_for(), "rolling_coulomb_newton b06446e48d09d3540c5bdd6e38d4d345cc3ca66519f71ace7e94526757b3a088") != 0)
+    static_cast<LAMMPS *>(lmp)->error->all(FLERR, "plugin fricgen/rolling_coulomb_newton: its class PairFricgenRollingCoulombNewton holds the code of law {} (a plugin "
+                                           "loaded earlier defines the same class): load one of the two, or rename a law",
+                                           PairFricgenRollingCoulombNewton::built_for());
   lammpsplugin_t plugin;
   auto register_plugin = (lammpsplugin_regfunc) regfunc;
   plugin.version = static_cast<LAMMPS *>(lmp)->version;    // the running LAMMPS: no version.h needed

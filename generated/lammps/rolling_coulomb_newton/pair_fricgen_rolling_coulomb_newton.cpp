@@ -249,7 +249,7 @@ inline double noise_amplitude_ito(double u, double w, double r, double mu, doubl
 
 }    // namespace
 
-const char *PairFricgenRollingCoulombNewton::built_for() const
+const char *PairFricgenRollingCoulombNewton::built_for()
 {
   return "rolling_coulomb_newton b06446e48d09d3540c5bdd6e38d4d345cc3ca66519f71ace7e94526757b3a088";
 }

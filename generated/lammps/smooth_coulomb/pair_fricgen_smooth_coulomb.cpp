@@ -420,7 +420,7 @@ inline double noise_amplitude_ito(double u, double w, double r, double mu, doubl
 
 }    // namespace
 
-const char *PairFricgenSmoothCoulomb::built_for() const
+const char *PairFricgenSmoothCoulomb::built_for()
 {
   return "smooth_coulomb a68bd35cccf52750ee15781d4daa13158f9843fe2b623afbfaa4f54bdbdae406";
 }

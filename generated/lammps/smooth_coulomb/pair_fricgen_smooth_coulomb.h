@@ -21,7 +21,7 @@ class PairFricgenSmoothCoulomb : public Pair {
   void coeff(int, char **) override;
   void init_style() override;
   double init_one(int, int) override;
-  virtual const char *built_for() const;    // "<law> <source hash>": the plugin's creator checks it
+  static const char *built_for();    // "<law> <source hash>": checked when the plugin is loaded
 
  protected:
   double kT, inertia;

@@ -14,24 +14,24 @@
 
 using namespace LAMMPS_NS;
 
-// Two plugins whose laws' names become one C++ class (fricgen.derive.law.names) would share it: LAMMPS
-// loads plugins with their symbols global, so this creator would make the first plugin's object and
-// the style run another law. It refuses that: the object must say it was built for this law.
 static Pair *creator(LAMMPS *lmp)
 {
-  PairFricgenStribeck *pair = new PairFricgenStribeck(lmp);
-  if (std::strcmp(pair->built_for(), "stribeck ac68a2d097b312d272ecfa50470574a1c17ae0cd33c041b27aa30c9b39dbdff6") != 0)
-    lmp->error->all(FLERR, "pair_style fricgen/stribeck: its class PairFricgenStribeck runs the code of law {} (a plugin loaded "
-                    "earlier defines the same class): load one of the two, or rename a law", pair->built_for());
-  return pair;
+  return new PairFricgenStribeck(lmp);
 }
 static Fix *fix_creator(LAMMPS *lmp, int argc, char **argv)
 {
   return new FixFricgenStribeck(lmp, argc, argv);
 }
 
+// Two plugins whose laws' names become one C++ class (fricgen.derive.law.names) would share it: LAMMPS
+// loads plugins with their symbols global, so this plugin's styles would make the first plugin's
+// objects and run another law. Loading refuses that: the class must say it was built for this law.
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
+  if (std::strcmp(PairFricgenStribeck::built_for(), "stribeck ac68a2d097b312d272ecfa50470574a1c17ae0cd33c041b27aa30c9b39dbdff6") != 0)
+    static_cast<LAMMPS *>(lmp)->error->all(FLERR, "plugin fricgen/stribeck: its class PairFricgenStribeck holds the code of law {} (a plugin "
+                                           "loaded earlier defines the same class): load one of the two, or rename a law",
+                                           PairFricgenStribeck::built_for());
   lammpsplugin_t plugin;
   auto register_plugin = (lammpsplugin_regfunc) regfunc;
   plugin.version = static_cast<LAMMPS *>(lmp)->version;    // the running LAMMPS: no version.h needed

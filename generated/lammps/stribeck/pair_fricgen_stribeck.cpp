@@ -213,7 +213,7 @@ inline double noise_amplitude_ito(double u, double w, double r, double mu, doubl
 
 }    // namespace
 
-const char *PairFricgenStribeck::built_for() const
+const char *PairFricgenStribeck::built_for()
 {
   return "stribeck ac68a2d097b312d272ecfa50470574a1c17ae0cd33c041b27aa30c9b39dbdff6";
 }

@@ -205,7 +205,7 @@ inline double noise_amplitude_ito(double u, double w, double r, double mu, doubl
 
 }    // namespace
 
-const char *PairFricgenViscousCubic::built_for() const
+const char *PairFricgenViscousCubic::built_for()
 {
   return "viscous_cubic 6ed8a71b1a1478e7c675fac40147957410460b0374a73b1561cb70da83497c40";
 }
