@@ -31,7 +31,7 @@ from .test_contact import BOX, DT, EPSILON, KT, LAWS, SEED, spheres
 STEPS = 6
 
 
-def engine_steps(law: str, dim: int, noise: bool, snapshots, box_length: float = BOX, phases=None):
+def engine_steps(law: str, dim: int, noise: bool, snapshots, box_length: float = BOX, phases=None, calculus: str = "ito"):
     """The engine's contact step of each step s from LAMMPS's velocities and spins at s and positions at s + 1:
     (velocities, spins) after it, per step. ``phases(position)``: the phase of each particle, the pairs then
     stepped phase after phase, by the phase of their particle of lower index."""
@@ -47,7 +47,7 @@ def engine_steps(law: str, dim: int, noise: bool, snapshots, box_length: float =
         omega = np.ascontiguousarray(vectors(snapshots[s], "omegax", "omegay", "omegaz"))
         wrapped = np.where(box > 0, np.mod(position, np.where(box > 0, box, 1.0)), position)
         state = State(wrapped, velocity, omega, np.tile([1.0, 0.0, 0.0, 0.0], (n, 1)), box, dim)
-        law_section = Law(name=law, calculus="ito", contact_noise=noise, parameters=LAWS[law])
+        law_section = Law(name=law, calculus=calculus, contact_noise=noise, parameters=LAWS[law])
         config = LangevinConfig(law=law_section, thermostat=Thermostat(kT=KT, dt=DT), epsilon=EPSILON, seed=SEED)
         simulation = Simulation(config, particles, state, load_law_kernels(law))
         dyn = simulation.dynamics()
@@ -75,19 +75,20 @@ def split_spheres(dim: int):
     return position, velocity, omega
 
 
-def _dynamics(plugin, law: str, dim: int, noise: bool) -> str:
+def _dynamics(plugin, law: str, dim: int, noise: bool, calculus: str = "ito") -> str:
     """The input lines after the atoms: no pair force, fix nve/sphere and the fix (every step reneighboured)."""
     parameters = " ".join(f"{k} {v!r}" for k, v in LAWS[law].items())
     return (
         f"plugin load {plugin}\npair_style zero 1.2\npair_coeff * *\n"
         "comm_modify vel yes\nneighbor 0.3 bin\nneigh_modify every 1 delay 0 check no\nfix 1 all nve/sphere\n"
         + ("fix 3 all enforce2d\n" if dim == 2 else "")
-        + f"fix 2 all fricgen/exact/{law} {KT!r} {SEED} noise {'yes' if noise else 'no'} epsilon {EPSILON!r} {parameters}\n"
+        + f"fix 2 all fricgen/exact/{law} {KT!r} {SEED} noise {'yes' if noise else 'no'} calculus {calculus}"
+        f" epsilon {EPSILON!r} {parameters}\n"
         f"timestep {DT!r}\n"
     )
 
 
-def lammps_run(lammps, plugin, folder, law: str, dim: int, noise: bool, ranks: int = 1, newton: str = "on", runs: str = ""):
+def lammps_run(lammps, plugin, folder, law: str, dim: int, noise: bool, ranks: int = 1, newton: str = "on", runs: str = "", calculus="ito"):
     """STEPS steps dumped every step (or the input lines ``runs`` after the dump) from the nine spheres."""
     box, coordinates = (BOX, spheres(dim)) if ranks == 1 else (12.0, split_spheres(dim))
     data_file(folder / "data.spheres", box, dim, *coordinates)
@@ -95,7 +96,7 @@ def lammps_run(lammps, plugin, folder, law: str, dim: int, noise: bool, ranks: i
         f"units lj\ndimension {dim}\natom_style sphere\natom_modify map array\nboundary p p p\nnewton {newton}\n"
         + ("processors 2 1 1\n" if ranks == 2 else "")
         + "read_data data.spheres\nset type 1 mass 1.0\n"
-        + _dynamics(plugin, law, dim, noise)
+        + _dynamics(plugin, law, dim, noise, calculus)
         + dump_lines("dump.steps")
         + (runs or f"run {STEPS}\n")
     )
@@ -127,6 +128,23 @@ def test_one_rank_is_the_engines_step(lammps, plugin, tmp_path, law, dim, noise)
     snapshots = lammps_run(lammps, plugin(law), tmp_path, law, dim, noise)
     assert moved(snapshots) > 0.05  # the contacts acted
     assert deviation(snapshots, engine_steps(law, dim, noise, snapshots)) < 1e-12
+
+
+@pytest.mark.parametrize(
+    "law, calculus, dim",
+    [
+        ("coulomb_newton", "stratonovich", 2),
+        ("coulomb_newton", "hk", 3),
+        ("smooth_coulomb", "stratonovich", 3),
+        ("smooth_coulomb", "hk", 2),
+    ],
+)
+def test_every_calculus_is_the_engines_step(lammps, plugin, tmp_path, law, calculus, dim):
+    """The Stratonovich and Haenggi-Klimontovich drifts of the proposal (theta = 1/2, 1; HK through df/du), one rank."""
+    snapshots = lammps_run(lammps, plugin(law), tmp_path, law, dim, True, calculus=calculus)
+    assert moved(snapshots) > 0.05
+    assert deviation(snapshots, engine_steps(law, dim, True, snapshots, calculus=calculus)) < 1e-12
+    assert deviation(snapshots, engine_steps(law, dim, True, snapshots)) > 1e-9  # the Ito step differs
 
 
 @pytest.mark.parametrize("newton", ["on", "off"])

@@ -145,15 +145,16 @@ def law_kernels(law: FrictionLaw, model: NoiseModel, order: int) -> str:
     at_zero = zero_speed_limit(ratio)
     doc = equation("f/u", ratio, f"the factor of the tangential velocity{zero_speed_note(at_zero)}", "")
     parts.append(kernel("friction_over_u", "u, w, r, params", ratio, doc, params, at_zero))
-    c, a = model.calculus.value, compact(model.variance_scale)
-    args = "u, w, r, mu, kT, params"
-    if model.closed_form:
-        at_zero = zero_speed_limit(model.amplitude)
-        at_zero = None if at_zero is sp.nan else at_zero
-        how = "D = f/u as nu = 0" if a == 0 else f"(F-22) in closed form with kT nu = {a}"
-        doc = equation("D(u)", model.amplitude, f"the {c} calculus: {how}{zero_speed_note(at_zero)}", "")
-        parts.append(kernel(f"noise_amplitude_{c}", args, model.amplitude, doc, params, at_zero))
-        return "\n".join(parts)
+    if not model.closed_form:
+        parts += quadrature_helpers(law, model, order)
+    parts.append(amplitude_kernel(law, model))
+    return "\n".join(parts)
+
+
+def quadrature_helpers(law: FrictionLaw, model: NoiseModel, order: int) -> list[str]:
+    """The switches of f, the quadrature of (F-22) and (where the law has them) the noise tables' factor and builder."""
+    params = [p.symbol for p in law.parameters]
+    parts = []
     cuts = switches(law.friction)
     for k, g in enumerate(cuts):
         doc = f"A branch condition of f changes where this changes sign: {cut(str(compact(g)))} (see next_cut)."
@@ -161,6 +162,21 @@ def law_kernels(law: FrictionLaw, model: NoiseModel, order: int) -> str:
     parts.append(tail_kernels(order, len(cuts)))
     if (factor := table_factor(law, model)) is not None:  # noise tables (fricgen.derive.backends.tables): f = h g(u), D = h D_g(u)
         parts += [kernel("factor", "w, r, params", factor, f"h(w, r) = {cut(str(compact(factor)))}", params), table_builder()]
+    return parts
+
+
+def amplitude_kernel(law: FrictionLaw, model: NoiseModel) -> str:
+    """noise_amplitude_<calculus> of ``model``: its closed form, or the quadrature of (F-22) (quadrature_helpers)."""
+    params = [p.symbol for p in law.parameters]
+    c, a = model.calculus.value, compact(model.variance_scale)
+    args = "u, w, r, mu, kT, params"
+    if model.closed_form:
+        at_zero = zero_speed_limit(model.amplitude)
+        at_zero = None if at_zero is sp.nan else at_zero
+        how = "D = f/u as nu = 0" if a == 0 else f"(F-22) in closed form with kT nu = {a}"
+        doc = equation("D(u)", model.amplitude, f"the {c} calculus: {how}{zero_speed_note(at_zero)}", "")
+        return kernel(f"noise_amplitude_{c}", args, model.amplitude, doc, params, at_zero)
+    factor = table_factor(law, model)
     doc = (
         f"D(u) = (1/a) int_u^oo f(s) exp(-(s**2 - u**2)/(2*a)) ds (F-22), a = kT nu = {a} ({c} calculus),\n"
         f"f(s) = {cut(str(compact(law.friction.subs(u, s))))}: Gauss-Legendre quadrature on geometric panels (gaussian_tail)."
@@ -169,8 +185,7 @@ def law_kernels(law: FrictionLaw, model: NoiseModel, order: int) -> str:
     )
     scale = CxxKernelPrinter().doprint(model.variance_scale)
     body = tabled_amplitude(scale) if factor is not None else f"{{\n{INDENT}return gaussian_tail(u, {scale}, w, r, params);\n}}\n"
-    parts.append(f"{comment(doc)}inline double noise_amplitude_{c}({SIGNATURES[args]})\n{body}")
-    return "\n".join(parts)
+    return f"{comment(doc)}inline double noise_amplitude_{c}({SIGNATURES[args]})\n{body}"
 
 
 def slope_kernel(law: FrictionLaw) -> str:

@@ -29,7 +29,7 @@ from string import Template
 from ...law.names import camel
 from .templates import LAW_CONSTANTS
 
-#: theta of each calculus (fricgen.derive.calculus.Calculus.theta): where the scheme evaluates D.
+#: theta of each calculus (fricgen.derive.calculus.Calculus.theta, in its order): where the scheme evaluates D.
 THETA = {"ito": "0.0", "stratonovich": "0.5", "hk": "1.0"}
 
 FIX_HEADER = Template("""#ifndef LMP_FIX_FRICGEN_${LAW_UPPER}_H
@@ -42,7 +42,7 @@ FIX_HEADER = Template("""#ifndef LMP_FIX_FRICGEN_${LAW_UPPER}_H
 
 namespace LAMMPS_NS {
 
-// fix ID group fricgen/exact/${law} kT seed [noise yes|no] [inertia sphere|disc|c] [name value ...]
+// fix ID group fricgen/exact/${law} kT seed [noise yes|no] [calculus ${calculi_list}] [inertia sphere|disc|c] [name value ...]
 // (law parameters: ${parameter_list}; sigma is 1: distances are scaled by R_i + R_k, as in fricgen's engine)
 class ${fix_cls} : public Fix {
  public:
@@ -67,7 +67,7 @@ class ${fix_cls} : public Fix {
  protected:
   double kT, inertia, reach;
   bigint seed;
-  int noise_on;
+  int noise_on, calculus;
   double params[${nparams}];
   class NeighList *list;
   std::vector<Pair> pairs;
@@ -134,11 +134,12 @@ struct ModeStep {
 
 // The proposal from the mode x (contact_step.mode_step): (f/u, m, s2, g), y = x + (e^(g W) - 1)/g,
 // W = m + sqrt(s2) (xi1 + i xi2), g the conjugate of grad ln sqrt(D).
-inline ModeStep mode_step(Cx x, double w, double r, double mu, double kT, double dt, const double *params, int comps)
+inline ModeStep mode_step(Cx x, double w, double r, double mu, double kT, double dt, const double *params, int comps, int calculus)
 {
   const double u = comps == 1 ? std::fabs(x.re) : std::sqrt(x.re * x.re + x.im * x.im);
   const double ratio = friction_over_u(u, w, r, params);
-  const double amplitude = noise_amplitude_${calculus}(u, w, r, mu, kT, params);
+  const double amplitude = noise_amplitude(calculus, u, w, r, mu, kT, params);
+  const double THETA = THETAS[calculus];
   double slope_over_u;
   if (THETA == 1.0)    // D'/u with D = f/u
     slope_over_u = u > 0.0 ? (friction_slope(u, w, r, params) - ratio) / (u * u) : 0.0;
@@ -161,10 +162,10 @@ inline double log_proposal(double xi2, Cx g_w, int comps)
 
 // The Metropolis-Hastings move of the mode from x (contact_step._propose): y, and in rejection 1 - min(1, alpha).
 inline Cx propose(Cx x, double w, double r, double mu, double kT, double dt, const double *params, uint64_t key, int comps,
-                  double &rejection)
+                  int calculus, double &rejection)
 {
   rejection = 0.0;
-  const ModeStep a = mode_step(x, w, r, mu, kT, dt, params, comps);
+  const ModeStep a = mode_step(x, w, r, mu, kT, dt, params, comps, calculus);
   if (!(a.s2 > 0.0)) return x;
   const Cx xi = {ziggurat_normal(key, 0), comps == 2 ? ziggurat_normal(key, 1) : 0.0};
   const Cx move = a.m + real(std::sqrt(a.s2)) * xi;
@@ -172,7 +173,7 @@ inline Cx propose(Cx x, double w, double r, double mu, double kT, double dt, con
   rejection = 1.0;
   if (std::fabs(g_w.im) >= 3.141592653589793) return x;
   const Cx y = x + (nonzero(a.g) ? expm1_c(g_w, comps) * inverse(a.g) : move);
-  const ModeStep b = mode_step(y, w, r, mu, kT, dt, params, comps);
+  const ModeStep b = mode_step(y, w, r, mu, kT, dt, params, comps, calculus);
   const Cx z = b.g * (x - y);
   if (!(b.s2 > 0.0 && (comps == 2 || 1.0 + z.re > 0.0))) return x;
   const Cx back = nonzero(b.g) ? log1p_c(z, comps) * inverse(b.g) : x - y;
@@ -247,12 +248,20 @@ namespace {
     + LAW_CONSTANTS
     + r"""const int SIGMA_INDEX = ${sigma_index};    // 1: distances scaled by sigma_ik = R_i + R_k (the engine's convention)
 const double WCA_RANGE = 1.122462048309373;    // 2^(1/6)
-const double THETA = ${theta};    // the ${calculus} calculus (contact_step.THETA)
+// The calculi in fricgen.derive.calculus.Calculus's order, theta of each (contact_step.THETA), which of them the law has.
+const char *const CALCULI[3] = {"ito", "stratonovich", "hk"};
+const double THETAS[3] = {0.0, 0.5, 1.0};
+const bool HAS_CALCULUS[3] = {${has_calculus}};
 
 ${support}${ziggurat}
 // --- the law's kernels (derive, verified: ${verified}) -------------------------------------------
 
 ${kernels}
+// D of the calculus with index c (CALCULI).
+inline double noise_amplitude(int c, double u, double w, double r, double mu, double kT, const double *params)
+{
+${dispatch}  return NAN;
+}
 ${step_code}}    // namespace
 
 ${fix_cls}::${fix_cls}(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg), list(nullptr)
@@ -263,6 +272,7 @@ ${fix_cls}::${fix_cls}(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg),
   if (!(kT > 0.0)) error->all(FLERR, "fix fricgen/exact/${law}: kT must be > 0, got {}", kT);
   if (seed < 0) error->all(FLERR, "fix fricgen/exact/${law}: seed must be >= 0, got {}", seed);
   noise_on = 1;
+  calculus = 0;
   inertia = 0.4;
   for (int k = 0; k < NPARAMS; k++) params[k] = DEFAULTS[k];
   if (SIGMA_INDEX >= 0) params[SIGMA_INDEX] = 1.0;
@@ -271,6 +281,13 @@ ${fix_cls}::${fix_cls}(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg),
     const std::string key = arg[a];
     if (key == "noise") {
       noise_on = utils::logical(FLERR, arg[a + 1], false, lmp);
+      continue;
+    }
+    if (key == "calculus") {
+      calculus = 0;
+      while (calculus < 3 && std::string(arg[a + 1]) != CALCULI[calculus]) calculus++;
+      if (calculus == 3 || !HAS_CALCULUS[calculus])
+        error->all(FLERR, "fix fricgen/exact/${law}: calculus {} not available; the law has ${calculi_list}", arg[a + 1]);
       continue;
     }
     if (key == "inertia") {
@@ -282,7 +299,8 @@ ${fix_cls}::${fix_cls}(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg),
     int k = 0;
     while (k < NPARAMS && key != PARAMETERS[k]) k++;
     if (k == NPARAMS || k == SIGMA_INDEX)
-      error->all(FLERR, "fix fricgen/exact/${law}: unknown keyword {} (noise, inertia or a law parameter: ${parameter_list})", key);
+      error->all(FLERR, "fix fricgen/exact/${law}: unknown keyword {} (noise, calculus, inertia or a law parameter: "
+                 "${parameter_list})", key);
     const double value = utils::numeric(FLERR, arg[a + 1], false, lmp);
     const double *range = RANGES[k];
     const bool above = value > range[0] || (range[2] != 0.0 && value == range[0]);
@@ -384,9 +402,9 @@ void ${fix_cls}::step_pair(const Pair &p, uint64_t key)
   if (noise_on) {
     double rejection;
     y = propose(xm, w, r, mu, kT, dt, params, pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1),
-                comps, rejection);
+                comps, calculus, rejection);
   } else {
-    y = xm * real(std::exp(-mu * mode_step(xm, w, r, mu, kT, dt, params, comps).ratio * dt));
+    y = xm * real(std::exp(-mu * mode_step(xm, w, r, mu, kT, dt, params, comps, calculus).ratio * dt));
   }
   if (same(y, xm)) return;
   const double jp = (xm.re - y.re) / mu, jq = (xm.im - y.im) / mu;    // impulse on i: u_perp -> u_perp - mu J
@@ -536,17 +554,22 @@ void ${fix_cls}::unpack_reverse_comm(int n, int *receive, double *buf)
 )
 
 
-def fix_files(fields: dict[str, str], kernels: str, support: str, ziggurat: str, weighted: bool) -> dict[str, str]:
+def fix_files(fields: dict[str, str], kernels: str, support: str, ziggurat: str, weighted: bool, calculi: list[str]) -> dict[str, str]:
     """The fix's header and source (by file name) of a sliding law, from the pair style's ``fields``, the law's
-    C++ ``kernels`` (with friction_slope), the shared ``support`` code, the ``ziggurat`` and whether f has a weight."""
+    C++ ``kernels`` (with friction_slope and noise_amplitude_<c> of each of its ``calculi``), the shared ``support``
+    code, the ``ziggurat`` and whether f has a weight."""
     values = {
         **fields,
         "fix_cls": fix_class(fields["law"]),
-        "theta": THETA[fields["calculus"]],
+        "calculi_list": calculi_list(calculi),
+        "has_calculus": ", ".join("true" if c in calculi else "false" for c in THETA),
+        "dispatch": "".join(
+            f"  if (c == {k}) return noise_amplitude_{c}(u, w, r, mu, kT, params);\n" for k, c in enumerate(THETA) if c in calculi
+        ),
         "support": support,
         "ziggurat": ziggurat,
         "kernels": kernels,
-        "step_code": Template(STEP_CODE).substitute(calculus=fields["calculus"]),
+        "step_code": STEP_CODE,
         "weight_call": "weight(r / sigma, params) / sigma" if weighted else "1.0",
     }
     law = fields["law"]
@@ -566,15 +589,20 @@ static Fix *fix_creator(LAMMPS *lmp, int argc, char **argv)
 |
   plugin.style = "fix";
   plugin.name = "fricgen/exact/${law}";
-  plugin.info = "fricgen: the pairwise contact step of friction law ${law} (Metropolis-adjusted, ${calculus} calculus)";
+  plugin.info = "fricgen: the pairwise contact step of friction law ${law} (Metropolis-adjusted; calculi ${calculi_list})";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_creator;
   (*register_plugin)(&plugin, lmp);
 """)
 
 
-def plugin_fields(law: str, calculus: str) -> dict[str, str]:
+def calculi_list(calculi: list[str]) -> str:
+    return "|".join(c for c in THETA if c in calculi)
+
+
+def plugin_fields(law: str, calculi: list[str]) -> dict[str, str]:
     """What the plugin's registration (templates.PLUGIN) adds for the fix: its include, creator and registration."""
-    include, creator, registration = PLUGIN_FIELDS.substitute(law=law, fix_cls=fix_class(law), calculus=calculus).split("|\n")
+    text = PLUGIN_FIELDS.substitute(law=law, fix_cls=fix_class(law), calculi_list=calculi_list(calculi))
+    include, creator, registration = text.split("|\n")
     return {"fix_include": include, "fix_creator": creator, "fix_registration": registration}
 
 

@@ -35,7 +35,7 @@ from ...law.laws import FrictionLaw
 from ...law.names import camel
 from ...noise.derivation import NoiseModel
 from ..printing import header
-from .code import law_kernels, potential_kernels, slope_kernel, support, wca
+from .code import amplitude_kernel, law_kernels, potential_kernels, slope_kernel, support, wca
 from .fix_code import exact_inputs, fix_files, plugin_fields
 from .mode_code import mode_compute, mode_fields, ziggurat_code, ziggurat_support
 from .templates import HEADER, PAIR_LOOP, PLUGIN, PLUGIN_ABI, SLIDING_COMPUTE, SOURCE
@@ -99,16 +99,17 @@ def _source(law: FrictionLaw, model: NoiseModel, fields: dict[str, str]) -> str:
 Ziggurat = tuple[tuple[np.ndarray, np.ndarray, np.ndarray], float]
 
 
-def _style(law: FrictionLaw, fields: dict[str, str], ziggurat: Ziggurat | None) -> dict[str, str]:
-    """What differs between the pair style of a sliding law (WCA + friction + noise, templates.SLIDING_COMPUTE)
-    and of a rolling or spinning law (couples only, mode_code): compute(), the potential, the support code,
-    the plugin's info, the dimension check, and the input templates' model and pair lines."""
+def _style(law: FrictionLaw, fields: dict[str, str], ziggurat: Ziggurat | None, calculi: list[str]) -> dict[str, str]:
+    """What differs between the pair style of a sliding law (WCA + friction + noise, templates.SLIDING_COMPUTE;
+    its plugin registers the fix of the ``calculi`` too) and of a rolling or spinning law (couples only, mode_code):
+    compute(), the potential, the support code, the plugin's info, the dimension check, and the input templates'
+    model and pair lines."""
     weight_call = "weight(r, params)" if law.weight is not None else "1.0"
     parameters = "".join(f" {p.name} {float(p.default)!r}" for p in law.parameters if p.name not in OWNED)
     law_name, calculus = law.name, fields["calculus"]
     if law.mode == "sliding":
         return {
-            **plugin_fields(law_name, calculus),
+            **plugin_fields(law_name, calculi),
             "fix_source": f" fix_fricgen_{law_name}.cpp",
             "compute": SLIDING_COMPUTE.substitute(fields, weight_call=weight_call, pair_loop=PAIR_LOOP),
             "potential": potential_kernels(wca()),
@@ -240,12 +241,21 @@ _SYSTEMS = {
 }
 
 
-def plugin_files(law: FrictionLaw, model: NoiseModel, digest: str, source: str, ziggurat: Ziggurat | None = None) -> dict[str, str]:
+def plugin_files(
+    law: FrictionLaw,
+    model: NoiseModel,
+    digest: str,
+    source: str,
+    ziggurat: Ziggurat | None = None,
+    fix_models: dict[str, NoiseModel] | None = None,
+) -> dict[str, str]:
     """The text of every file of the plugin of ``law`` for the verified ``model`` (Itô), by file name;
     ``source`` (it holds the name of a user's folder) printed into the comments by
     :func:`fricgen.derive.law.catalogues.inert`. A rolling or spinning law's pair style needs ``ziggurat``,
-    the tables of the engine's normals (fricgen.rng), to draw its noise as the engine does."""
+    the tables of the engine's normals (fricgen.rng), to draw its noise as the engine does, and so does a
+    sliding law's fix, which offers the calculi of ``fix_models`` (verified models by calculus; default ``model``'s)."""
     calculus = model.calculus.value
+    fix_models = fix_models or {calculus: model}
     check_calculus(law, calculus)
     form = "closed form" if model.closed_form else "integral (F-22), quadrature"
     style = f"fricgen/{law.name}" + ("" if law.mode == "sliding" else f" ({law.mode} mode, couples only)")
@@ -260,7 +270,7 @@ def plugin_files(law: FrictionLaw, model: NoiseModel, digest: str, source: str, 
     fields = {"law": law.name, "LAW_UPPER": law.name.upper(), "cls": class_name(law.name), "calculus": calculus}
     fields["built_for"] = f"{law.name} {digest}"  # what the plugin's creator checks its class against (templates.PLUGIN)
     fields["parameter_list"] = ", ".join(n for n in names if n not in OWNED) or "none"
-    fields |= _style(law, fields, ziggurat)
+    fields |= _style(law, fields, ziggurat, list(fix_models))
     files = {
         f"pair_fricgen_{law.name}.h": cxx + HEADER.substitute(fields),
         f"pair_fricgen_{law.name}.cpp": cxx + _source(law, model, fields),
@@ -269,11 +279,13 @@ def plugin_files(law: FrictionLaw, model: NoiseModel, digest: str, source: str, 
         "CMakeLists.txt": hash_mark + CMAKE.substitute(fields),
     }
     if law.mode == "sliding":  # the pairwise contact step as a fix (fix_code)
-        kernels = law_kernels(law, model, QUADRATURE_ORDER) + "\n" + slope_kernel(law)
-        ziggurat_text = ziggurat_code(*ziggurat) if ziggurat is not None else ""
-        if not ziggurat_text:
+        if ziggurat is None:
             raise ValueError(f"law {law.name}: the fix draws the engine's ziggurat normals; give their tables")
-        for name, text in fix_files(fields | _law_values(law, model), kernels, support(), ziggurat_text, law.weight is not None).items():
+        base = next((m for m in fix_models.values() if not m.closed_form), model)  # with the quadrature's helpers if any D needs them
+        others = [amplitude_kernel(law, m) for m in fix_models.values() if m is not base]
+        kernels = "\n".join([law_kernels(law, base, QUADRATURE_ORDER), *others, slope_kernel(law)])
+        values = fields | _law_values(law, model)
+        for name, text in fix_files(values, kernels, support(), ziggurat_code(*ziggurat), law.weight is not None, list(fix_models)).items():
             files[name] = cxx + text
     for dim, system in _SYSTEMS.items():
         if law.mode != "spinning" or dim == 3:  # spinning does not exist in 2-D

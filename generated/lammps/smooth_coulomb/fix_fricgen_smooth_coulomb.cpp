@@ -35,7 +35,10 @@ const double DEFAULTS[NPARAMS] = {5.0, 0.1, 1.0, 1.0};
 const double RANGES[NPARAMS][4] = {{0.0, INFINITY, 0.0, 0.0}, {0.0, INFINITY, 0.0, 0.0}, {0.0, INFINITY, 0.0, 0.0}, {0.0, INFINITY, 0.0, 0.0}};
 const int SIGMA_INDEX = 3;    // 1: distances scaled by sigma_ik = R_i + R_k (the engine's convention)
 const double WCA_RANGE = 1.122462048309373;    // 2^(1/6)
-const double THETA = 0.0;    // the ito calculus (contact_step.THETA)
+// The calculi in fricgen.derive.calculus.Calculus's order, theta of each (contact_step.THETA), which of them the law has.
+const char *const CALCULI[3] = {"ito", "stratonovich", "hk"};
+const double THETAS[3] = {0.0, 0.5, 1.0};
+const bool HAS_CALCULUS[3] = {true, true, true};
 
 // x^n for n >= 1 by repeated squaring (integer powers of the printed formulas).
 inline double fricgen_powi(double x, int n)
@@ -447,6 +450,33 @@ inline double noise_amplitude_ito(double u, double w, double r, double mu, doubl
   return gaussian_tail(u, a, w, r, params);
 }
 
+// D(u) = (1/a) int_u^oo f(s) exp(-(s**2 - u**2)/(2*a)) ds (F-22), a = kT nu = kT*mu/2 (stratonovich calculus),
+// f(s) = kappa_f*w*tanh(s/u0): Gauss-Legendre quadrature on geometric panels (gaussian_tail).
+// No closed form: f = kappa_f*w*tanh(u/u0) is not a sum of polynomials in u times exp(c u).
+// From the noise table for a and the parameters (noise_table_for) where there is one.
+inline double noise_amplitude_stratonovich(double u, double w, double r, double mu, double kT, const double *params)
+{
+  const double a = ((1.0/2.0))*kT*mu;
+  const double *table = noise_table_for(a, params);
+  if (table) {
+    const double tabled = table_lookup(u, table);
+    if (tabled >= 0.0) return factor(w, r, params) * tabled;
+  }
+  return gaussian_tail(u, a, w, r, params);
+}
+
+// D(u) = kappa_f*w*tanh(u/u0)/u, the hk calculus: D = f/u as nu = 0; at u <= 0 its limit u -> 0+, kappa_f*w/u0.
+inline double noise_amplitude_hk(double u, double w, double r, double mu, double kT, const double *params)
+{
+  const double kappa_f = params[0];
+  const double u0 = params[1];
+  (void) r;
+  (void) mu;
+  (void) kT;
+  if (u <= 0.0) return kappa_f*w/u0;
+  return kappa_f*w*std::tanh(u/u0)/u;
+}
+
 // df/du = kappa_f*w*(1 - tanh(u/u0)**2)/u0, the slope of f in u (the Itô drift of the HK calculus needs it, D' = (u f' - f)/u**2).
 inline double friction_slope(double u, double w, double r, const double *params)
 {
@@ -457,6 +487,14 @@ inline double friction_slope(double u, double w, double r, const double *params)
   return cse0*kappa_f*w/fricgen_powi(std::cosh(cse0*u), 2);
 }
 
+// D of the calculus with index c (CALCULI).
+inline double noise_amplitude(int c, double u, double w, double r, double mu, double kT, const double *params)
+{
+  if (c == 0) return noise_amplitude_ito(u, w, r, mu, kT, params);
+  if (c == 1) return noise_amplitude_stratonovich(u, w, r, mu, kT, params);
+  if (c == 2) return noise_amplitude_hk(u, w, r, mu, kT, params);
+  return NAN;
+}
 
 // --- the pairwise contact step (fricgen/langevin/contact_step.py, step for step) -------------------
 
@@ -508,11 +546,12 @@ struct ModeStep {
 
 // The proposal from the mode x (contact_step.mode_step): (f/u, m, s2, g), y = x + (e^(g W) - 1)/g,
 // W = m + sqrt(s2) (xi1 + i xi2), g the conjugate of grad ln sqrt(D).
-inline ModeStep mode_step(Cx x, double w, double r, double mu, double kT, double dt, const double *params, int comps)
+inline ModeStep mode_step(Cx x, double w, double r, double mu, double kT, double dt, const double *params, int comps, int calculus)
 {
   const double u = comps == 1 ? std::fabs(x.re) : std::sqrt(x.re * x.re + x.im * x.im);
   const double ratio = friction_over_u(u, w, r, params);
-  const double amplitude = noise_amplitude_ito(u, w, r, mu, kT, params);
+  const double amplitude = noise_amplitude(calculus, u, w, r, mu, kT, params);
+  const double THETA = THETAS[calculus];
   double slope_over_u;
   if (THETA == 1.0)    // D'/u with D = f/u
     slope_over_u = u > 0.0 ? (friction_slope(u, w, r, params) - ratio) / (u * u) : 0.0;
@@ -535,10 +574,10 @@ inline double log_proposal(double xi2, Cx g_w, int comps)
 
 // The Metropolis-Hastings move of the mode from x (contact_step._propose): y, and in rejection 1 - min(1, alpha).
 inline Cx propose(Cx x, double w, double r, double mu, double kT, double dt, const double *params, uint64_t key, int comps,
-                  double &rejection)
+                  int calculus, double &rejection)
 {
   rejection = 0.0;
-  const ModeStep a = mode_step(x, w, r, mu, kT, dt, params, comps);
+  const ModeStep a = mode_step(x, w, r, mu, kT, dt, params, comps, calculus);
   if (!(a.s2 > 0.0)) return x;
   const Cx xi = {ziggurat_normal(key, 0), comps == 2 ? ziggurat_normal(key, 1) : 0.0};
   const Cx move = a.m + real(std::sqrt(a.s2)) * xi;
@@ -546,7 +585,7 @@ inline Cx propose(Cx x, double w, double r, double mu, double kT, double dt, con
   rejection = 1.0;
   if (std::fabs(g_w.im) >= 3.141592653589793) return x;
   const Cx y = x + (nonzero(a.g) ? expm1_c(g_w, comps) * inverse(a.g) : move);
-  const ModeStep b = mode_step(y, w, r, mu, kT, dt, params, comps);
+  const ModeStep b = mode_step(y, w, r, mu, kT, dt, params, comps, calculus);
   const Cx z = b.g * (x - y);
   if (!(b.s2 > 0.0 && (comps == 2 || 1.0 + z.re > 0.0))) return x;
   const Cx back = nonzero(b.g) ? log1p_c(z, comps) * inverse(b.g) : x - y;
@@ -599,6 +638,7 @@ FixFricgenSmoothCoulomb::FixFricgenSmoothCoulomb(LAMMPS *lmp, int narg, char **a
   if (!(kT > 0.0)) error->all(FLERR, "fix fricgen/exact/smooth_coulomb: kT must be > 0, got {}", kT);
   if (seed < 0) error->all(FLERR, "fix fricgen/exact/smooth_coulomb: seed must be >= 0, got {}", seed);
   noise_on = 1;
+  calculus = 0;
   inertia = 0.4;
   for (int k = 0; k < NPARAMS; k++) params[k] = DEFAULTS[k];
   if (SIGMA_INDEX >= 0) params[SIGMA_INDEX] = 1.0;
@@ -607,6 +647,13 @@ FixFricgenSmoothCoulomb::FixFricgenSmoothCoulomb(LAMMPS *lmp, int narg, char **a
     const std::string key = arg[a];
     if (key == "noise") {
       noise_on = utils::logical(FLERR, arg[a + 1], false, lmp);
+      continue;
+    }
+    if (key == "calculus") {
+      calculus = 0;
+      while (calculus < 3 && std::string(arg[a + 1]) != CALCULI[calculus]) calculus++;
+      if (calculus == 3 || !HAS_CALCULUS[calculus])
+        error->all(FLERR, "fix fricgen/exact/smooth_coulomb: calculus {} not available; the law has ito|stratonovich|hk", arg[a + 1]);
       continue;
     }
     if (key == "inertia") {
@@ -618,7 +665,8 @@ FixFricgenSmoothCoulomb::FixFricgenSmoothCoulomb(LAMMPS *lmp, int narg, char **a
     int k = 0;
     while (k < NPARAMS && key != PARAMETERS[k]) k++;
     if (k == NPARAMS || k == SIGMA_INDEX)
-      error->all(FLERR, "fix fricgen/exact/smooth_coulomb: unknown keyword {} (noise, inertia or a law parameter: kappa_f, u0)", key);
+      error->all(FLERR, "fix fricgen/exact/smooth_coulomb: unknown keyword {} (noise, calculus, inertia or a law parameter: "
+                 "kappa_f, u0)", key);
     const double value = utils::numeric(FLERR, arg[a + 1], false, lmp);
     const double *range = RANGES[k];
     const bool above = value > range[0] || (range[2] != 0.0 && value == range[0]);
@@ -720,9 +768,9 @@ void FixFricgenSmoothCoulomb::step_pair(const Pair &p, uint64_t key)
   if (noise_on) {
     double rejection;
     y = propose(xm, w, r, mu, kT, dt, params, pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1),
-                comps, rejection);
+                comps, calculus, rejection);
   } else {
-    y = xm * real(std::exp(-mu * mode_step(xm, w, r, mu, kT, dt, params, comps).ratio * dt));
+    y = xm * real(std::exp(-mu * mode_step(xm, w, r, mu, kT, dt, params, comps, calculus).ratio * dt));
   }
   if (same(y, xm)) return;
   const double jp = (xm.re - y.re) / mu, jq = (xm.im - y.im) / mu;    // impulse on i: u_perp -> u_perp - mu J

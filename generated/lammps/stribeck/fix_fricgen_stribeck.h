@@ -13,7 +13,7 @@
 
 namespace LAMMPS_NS {
 
-// fix ID group fricgen/exact/stribeck kT seed [noise yes|no] [inertia sphere|disc|c] [name value ...]
+// fix ID group fricgen/exact/stribeck kT seed [noise yes|no] [calculus ito|stratonovich] [inertia sphere|disc|c] [name value ...]
 // (law parameters: kappa_s, kappa_d, u_s; sigma is 1: distances are scaled by R_i + R_k, as in fricgen's engine)
 class FixFricgenStribeck : public Fix {
  public:
@@ -38,7 +38,7 @@ class FixFricgenStribeck : public Fix {
  protected:
   double kT, inertia, reach;
   bigint seed;
-  int noise_on;
+  int noise_on, calculus;
   double params[5];
   class NeighList *list;
   std::vector<Pair> pairs;

@@ -44,7 +44,7 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   (*register_plugin)(&plugin, lmp);
   plugin.style = "fix";
   plugin.name = "fricgen/exact/stribeck";
-  plugin.info = "fricgen: the pairwise contact step of friction law stribeck (Metropolis-adjusted, ito calculus)";
+  plugin.info = "fricgen: the pairwise contact step of friction law stribeck (Metropolis-adjusted; calculi ito|stratonovich)";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_creator;
   (*register_plugin)(&plugin, lmp);
 }

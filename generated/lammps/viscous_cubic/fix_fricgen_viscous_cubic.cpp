@@ -35,7 +35,10 @@ const double DEFAULTS[NPARAMS] = {1.0, 0.1, 1.0, 1.0};
 const double RANGES[NPARAMS][4] = {{0.0, INFINITY, 0.0, 0.0}, {0.0, INFINITY, 0.0, 0.0}, {0.0, INFINITY, 0.0, 0.0}, {0.0, INFINITY, 0.0, 0.0}};
 const int SIGMA_INDEX = 3;    // 1: distances scaled by sigma_ik = R_i + R_k (the engine's convention)
 const double WCA_RANGE = 1.122462048309373;    // 2^(1/6)
-const double THETA = 0.0;    // the ito calculus (contact_step.THETA)
+// The calculi in fricgen.derive.calculus.Calculus's order, theta of each (contact_step.THETA), which of them the law has.
+const char *const CALCULI[3] = {"ito", "stratonovich", "hk"};
+const double THETAS[3] = {0.0, 0.5, 1.0};
+const bool HAS_CALCULUS[3] = {true, true, true};
 
 // x^n for n >= 1 by repeated squaring (integer powers of the printed formulas).
 inline double fricgen_powi(double x, int n)
@@ -232,6 +235,26 @@ inline double noise_amplitude_ito(double u, double w, double r, double mu, doubl
   return w*(2.0*beta_f*kT*mu + beta_f*fricgen_powi(u, 2) + gamma_f);
 }
 
+// D(u) = w*(beta_f*kT*mu + beta_f*u**2 + gamma_f), the stratonovich calculus: (F-22) in closed form with kT nu = kT*mu/2.
+inline double noise_amplitude_stratonovich(double u, double w, double r, double mu, double kT, const double *params)
+{
+  const double gamma_f = params[0];
+  const double beta_f = params[1];
+  (void) r;
+  return w*(beta_f*kT*mu + beta_f*fricgen_powi(u, 2) + gamma_f);
+}
+
+// D(u) = w*(beta_f*u**2 + gamma_f), the hk calculus: D = f/u as nu = 0.
+inline double noise_amplitude_hk(double u, double w, double r, double mu, double kT, const double *params)
+{
+  const double gamma_f = params[0];
+  const double beta_f = params[1];
+  (void) r;
+  (void) mu;
+  (void) kT;
+  return w*(beta_f*fricgen_powi(u, 2) + gamma_f);
+}
+
 // df/du = w*(3*beta_f*u**2 + gamma_f), the slope of f in u (the Itô drift of the HK calculus needs it, D' = (u f' - f)/u**2).
 inline double friction_slope(double u, double w, double r, const double *params)
 {
@@ -241,6 +264,14 @@ inline double friction_slope(double u, double w, double r, const double *params)
   return w*(3.0*beta_f*fricgen_powi(u, 2) + gamma_f);
 }
 
+// D of the calculus with index c (CALCULI).
+inline double noise_amplitude(int c, double u, double w, double r, double mu, double kT, const double *params)
+{
+  if (c == 0) return noise_amplitude_ito(u, w, r, mu, kT, params);
+  if (c == 1) return noise_amplitude_stratonovich(u, w, r, mu, kT, params);
+  if (c == 2) return noise_amplitude_hk(u, w, r, mu, kT, params);
+  return NAN;
+}
 
 // --- the pairwise contact step (fricgen/langevin/contact_step.py, step for step) -------------------
 
@@ -292,11 +323,12 @@ struct ModeStep {
 
 // The proposal from the mode x (contact_step.mode_step): (f/u, m, s2, g), y = x + (e^(g W) - 1)/g,
 // W = m + sqrt(s2) (xi1 + i xi2), g the conjugate of grad ln sqrt(D).
-inline ModeStep mode_step(Cx x, double w, double r, double mu, double kT, double dt, const double *params, int comps)
+inline ModeStep mode_step(Cx x, double w, double r, double mu, double kT, double dt, const double *params, int comps, int calculus)
 {
   const double u = comps == 1 ? std::fabs(x.re) : std::sqrt(x.re * x.re + x.im * x.im);
   const double ratio = friction_over_u(u, w, r, params);
-  const double amplitude = noise_amplitude_ito(u, w, r, mu, kT, params);
+  const double amplitude = noise_amplitude(calculus, u, w, r, mu, kT, params);
+  const double THETA = THETAS[calculus];
   double slope_over_u;
   if (THETA == 1.0)    // D'/u with D = f/u
     slope_over_u = u > 0.0 ? (friction_slope(u, w, r, params) - ratio) / (u * u) : 0.0;
@@ -319,10 +351,10 @@ inline double log_proposal(double xi2, Cx g_w, int comps)
 
 // The Metropolis-Hastings move of the mode from x (contact_step._propose): y, and in rejection 1 - min(1, alpha).
 inline Cx propose(Cx x, double w, double r, double mu, double kT, double dt, const double *params, uint64_t key, int comps,
-                  double &rejection)
+                  int calculus, double &rejection)
 {
   rejection = 0.0;
-  const ModeStep a = mode_step(x, w, r, mu, kT, dt, params, comps);
+  const ModeStep a = mode_step(x, w, r, mu, kT, dt, params, comps, calculus);
   if (!(a.s2 > 0.0)) return x;
   const Cx xi = {ziggurat_normal(key, 0), comps == 2 ? ziggurat_normal(key, 1) : 0.0};
   const Cx move = a.m + real(std::sqrt(a.s2)) * xi;
@@ -330,7 +362,7 @@ inline Cx propose(Cx x, double w, double r, double mu, double kT, double dt, con
   rejection = 1.0;
   if (std::fabs(g_w.im) >= 3.141592653589793) return x;
   const Cx y = x + (nonzero(a.g) ? expm1_c(g_w, comps) * inverse(a.g) : move);
-  const ModeStep b = mode_step(y, w, r, mu, kT, dt, params, comps);
+  const ModeStep b = mode_step(y, w, r, mu, kT, dt, params, comps, calculus);
   const Cx z = b.g * (x - y);
   if (!(b.s2 > 0.0 && (comps == 2 || 1.0 + z.re > 0.0))) return x;
   const Cx back = nonzero(b.g) ? log1p_c(z, comps) * inverse(b.g) : x - y;
@@ -383,6 +415,7 @@ FixFricgenViscousCubic::FixFricgenViscousCubic(LAMMPS *lmp, int narg, char **arg
   if (!(kT > 0.0)) error->all(FLERR, "fix fricgen/exact/viscous_cubic: kT must be > 0, got {}", kT);
   if (seed < 0) error->all(FLERR, "fix fricgen/exact/viscous_cubic: seed must be >= 0, got {}", seed);
   noise_on = 1;
+  calculus = 0;
   inertia = 0.4;
   for (int k = 0; k < NPARAMS; k++) params[k] = DEFAULTS[k];
   if (SIGMA_INDEX >= 0) params[SIGMA_INDEX] = 1.0;
@@ -391,6 +424,13 @@ FixFricgenViscousCubic::FixFricgenViscousCubic(LAMMPS *lmp, int narg, char **arg
     const std::string key = arg[a];
     if (key == "noise") {
       noise_on = utils::logical(FLERR, arg[a + 1], false, lmp);
+      continue;
+    }
+    if (key == "calculus") {
+      calculus = 0;
+      while (calculus < 3 && std::string(arg[a + 1]) != CALCULI[calculus]) calculus++;
+      if (calculus == 3 || !HAS_CALCULUS[calculus])
+        error->all(FLERR, "fix fricgen/exact/viscous_cubic: calculus {} not available; the law has ito|stratonovich|hk", arg[a + 1]);
       continue;
     }
     if (key == "inertia") {
@@ -402,7 +442,8 @@ FixFricgenViscousCubic::FixFricgenViscousCubic(LAMMPS *lmp, int narg, char **arg
     int k = 0;
     while (k < NPARAMS && key != PARAMETERS[k]) k++;
     if (k == NPARAMS || k == SIGMA_INDEX)
-      error->all(FLERR, "fix fricgen/exact/viscous_cubic: unknown keyword {} (noise, inertia or a law parameter: gamma_f, beta_f)", key);
+      error->all(FLERR, "fix fricgen/exact/viscous_cubic: unknown keyword {} (noise, calculus, inertia or a law parameter: "
+                 "gamma_f, beta_f)", key);
     const double value = utils::numeric(FLERR, arg[a + 1], false, lmp);
     const double *range = RANGES[k];
     const bool above = value > range[0] || (range[2] != 0.0 && value == range[0]);
@@ -504,9 +545,9 @@ void FixFricgenViscousCubic::step_pair(const Pair &p, uint64_t key)
   if (noise_on) {
     double rejection;
     y = propose(xm, w, r, mu, kT, dt, params, pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1),
-                comps, rejection);
+                comps, calculus, rejection);
   } else {
-    y = xm * real(std::exp(-mu * mode_step(xm, w, r, mu, kT, dt, params, comps).ratio * dt));
+    y = xm * real(std::exp(-mu * mode_step(xm, w, r, mu, kT, dt, params, comps, calculus).ratio * dt));
   }
   if (same(y, xm)) return;
   const double jp = (xm.re - y.re) / mu, jq = (xm.im - y.im) / mu;    // impulse on i: u_perp -> u_perp - mu J

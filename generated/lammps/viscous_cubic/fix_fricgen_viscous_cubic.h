@@ -13,7 +13,7 @@
 
 namespace LAMMPS_NS {
 
-// fix ID group fricgen/exact/viscous_cubic kT seed [noise yes|no] [inertia sphere|disc|c] [name value ...]
+// fix ID group fricgen/exact/viscous_cubic kT seed [noise yes|no] [calculus ito|stratonovich|hk] [inertia sphere|disc|c] [name value ...]
 // (law parameters: gamma_f, beta_f; sigma is 1: distances are scaled by R_i + R_k, as in fricgen's engine)
 class FixFricgenViscousCubic : public Fix {
  public:
@@ -38,7 +38,7 @@ class FixFricgenViscousCubic : public Fix {
  protected:
   double kT, inertia, reach;
   bigint seed;
-  int noise_on;
+  int noise_on, calculus;
   double params[4];
   class NeighList *list;
   std::vector<Pair> pairs;
