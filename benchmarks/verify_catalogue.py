@@ -3,7 +3,7 @@ a new law in a fresh process with the lemma cache cold and warm.
 
 Targets: the whole catalogue, all calculi, under 60 s on the 2-core machine (issue 2); verify +
 generate of one new law in a new process under 10 s with a warm lemma cache (fricgen.derive.noise.lemma_cache).
-Prints the one-off phase-space lemmas (per dimension and calculus: proven, then read from the cache)
+Prints the one-off phase-space lemmas (per mode, dimension and calculus: proven, then read from the cache)
 apart from the per-law work. The cache lives in a temporary folder (FRICGEN_CACHE), never the user's.
 
 Run: python benchmarks/verify_catalogue.py [--skip-catalogue] [--skip-regeneration]
@@ -29,19 +29,20 @@ NEW_LAWS = {
 
 def lemmas() -> float:
     """Prove (or read) the law-independent facts through the cache; print each; return the total."""
-    from fricgen.derive.noise import lemma_cache
+    from fricgen.derive.noise import lemma_cache, modes
 
     total = 0.0
-    for dim in (3, 2):
-        t = time.perf_counter()
-        lemma_cache.covariance(dim)
-        total += (spent := time.perf_counter() - t)
-        print(f"  covariance {dim}-D            {spent:7.2f} s")
-        for calculus in ("ito", "stratonovich", "hk"):
+    for mode in modes.CONTACT_MODES:
+        for dim in modes.dimensions(mode):
             t = time.perf_counter()
-            lemma = lemma_cache.zero_current(dim, calculus)
+            lemma_cache.facts(mode, dim)
             total += (spent := time.perf_counter() - t)
-            print(f"  zero current {dim}-D {calculus:13s} {spent:6.2f} s  holds={lemma.holds} nu/mu={lemma.nu_over_mu}")
+            print(f"  {mode:8s} facts {dim}-D                 {spent:7.2f} s")
+            for calculus in ("ito", "stratonovich", "hk"):
+                t = time.perf_counter()
+                lemma = lemma_cache.lemma(mode, dim, calculus)
+                total += (spent := time.perf_counter() - t)
+                print(f"  {mode:8s} zero current {dim}-D {calculus:13s} {spent:6.2f} s  holds={lemma.holds} nu/mu={lemma.nu_over_mu}")
     return total
 
 

@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 import sympy as sp
 
 from ..law.lawdata import CONTACT_MODES, mode_refusal
-from . import mode_cache
+from . import lemma_cache
 from .derivation import NoiseModel
 from .mode_proofs import mobility_matrix
 from .phase_space import pair_phase_space
@@ -130,7 +130,7 @@ def prove_contact(
     if checks["one_law_per_mode"] and checks["one_calculus"] and checks["modes_exist"]:
         for dim in dims:
             ordered = tuple(m for m in CONTACT_MODES if m in modes)  # one cache entry per set of modes
-            result = mode_cache.combined(ordered, dim, calculi[0]) if len(modes) > 1 else {"holds": True}
+            result = lemma_cache.combined(ordered, dim, calculi[0]) if len(modes) > 1 else {"holds": True}
             checks[f"zero_current_{dim}d"] = result["holds"] is True
             if len(modes) > 1 and not result["holds"]:
                 details[f"zero_current_{dim}d"] = f"the current of {'+'.join(modes)} is not the sum of the modes' currents"

@@ -1,27 +1,34 @@
-"""On-disk cache of the law-independent facts of :mod:`fricgen.derive.noise.phase_space`.
+"""On-disk cache of the law-independent facts of :mod:`fricgen.derive.noise.mode_proofs`.
 
-Proving the zero-current lemma and the covariance identities (F-50) on the pair phase space takes
-30-40 s and does not depend on the law, so every ``verify``/``generate`` process would otherwise
-prove them again. The facts (booleans, and the rational nu/mu that the lemma reads off the current)
-are stored as small JSON files in a user cache folder:
+Proving the zero-current lemma of a mode and calculus on the pair phase space takes up to 40 s and
+does not depend on the law (D and f are arbitrary there), so every ``verify``/``generate`` process
+would otherwise prove it again. The facts (booleans, and the rational nu/mu that the lemma reads off
+the current) are stored as small JSON files in a user cache folder:
 
 - ``$FRICGEN_CACHE`` if set (``off`` disables the cache: every process proves again),
 - else ``$XDG_CACHE_HOME/fricgen``, else ``~/.cache/fricgen``.
 
-Entries are keyed on a hash of the sources the proof depends on (derive/noise/phase_space.py,
-derive/law/symbols.py and this module), the generator version (fricgen.derive.law.lawdata.GENERATOR_VERSION) and
-the SymPy version. An entry is written atomically (a temporary file renamed into place).
+One entry per fact, named by what it is about, for every mode alike (sliding is one of three):
+
+- ``zero_current_<mode>_<dim>d_<calculus>``: :func:`lemma`, the lemma holds with nu/mu = 1 - theta;
+- ``facts_<mode>_<dim>d``: :func:`facts`, exactly the facts of :func:`.mode_proofs.mode_facts`, each true;
+- ``combined_<modes>_<dim>d_<calculus>`` (modes joined by ``+`` in the order given): :func:`combined`,
+  the current of the sum holds, with nu/mu = 1 - theta for every mode.
+
+The file of an entry is ``<name>-<key>.json``, its key (:func:`cache_key`) a hash of the sources the
+proofs depend on (:data:`SOURCES`), the generator version (fricgen.derive.law.lawdata.GENERATOR_VERSION)
+and the SymPy version. No law enters a key: the facts hold for every f and D. An entry is written
+atomically (a temporary file renamed into place), and only for a fact that the proof established (a
+refuted fact is proven again next time).
 
 The cache is an optimisation, never a source of truth: an entry is used only if it is a regular file
 (opened without blocking: a FIFO, a folder or a device in its place is a miss, never waited on), of
 at most :data:`MAX_ENTRY` bytes, whose ``sha256`` (over its own key, name and facts, canonical JSON)
-holds, with this key and name, and whose facts are what a proof establishes: the lemma holds with
-nu/mu = 1 - theta of the calculus (fricgen.derive.calculus; the value the proof reads off the
-current), and every covariance identity of the dimension is there and true. Anything else (damaged,
-foreign, a negative or vacuous fact such as an empty set of identities or an nu/mu of another
-calculus) is ignored: the fact is proven again and the entry rewritten. A folder that cannot be
-written is not an error: the fact is just not kept. No code is ever evaluated from the cache (the
-rational is parsed by ``fractions.Fraction``).
+holds, with this key and name, and whose facts are what a proof establishes. Anything else (damaged,
+foreign, a negative or vacuous fact such as an empty set of facts or an nu/mu of another calculus)
+is ignored: the fact is proven again and the entry rewritten. A folder that cannot be written is not
+an error: the fact is just not kept. No code is ever evaluated from the cache (a rational is parsed
+by ``fractions.Fraction``).
 """
 
 from __future__ import annotations
@@ -39,15 +46,14 @@ import sympy as sp
 from ..calculus import Calculus
 from ..law import manifests, symbols
 from ..law.lawdata import GENERATOR_VERSION, read_regular
-from . import phase_space
+from . import mode_proofs, modes, phase_space
+from .mode_proofs import FACTS, Lemma
 
 CACHE_ENV = manifests.CACHE_ENV
 #: The sources whose bytes key the cache (besides the generator and SymPy versions).
-SOURCES = (Path(phase_space.__file__), Path(symbols.__file__), Path(__file__))
+SOURCES = tuple(Path(m.__file__) for m in (phase_space, modes, mode_proofs, symbols)) + (Path(__file__),)
 #: Largest entry read, in bytes (an entry is about 200).
 MAX_ENTRY = 64 * 1024
-#: The identities that :func:`fricgen.derive.noise.phase_space.covariance_identities` proves, by dimension.
-IDENTITIES = {2: ("sigma_hat",), 3: ("sigma_hat", "random_force")}
 
 
 def cache_folder() -> Path | None:
@@ -83,11 +89,10 @@ def _digest(key: str, name: str, facts: dict) -> str:
     return hashlib.sha256(payload.encode()).hexdigest()
 
 
-def read_entry(name: str, key: str | None = None) -> dict | None:
+def read_entry(name: str) -> dict | None:
     """The cached facts of ``name``, or None (no cache, no entry, not a regular file, unreadable,
-    another key or name, or a payload that does not match its sha256). ``key``: :func:`cache_key`
-    unless given (fricgen.derive.noise.mode_cache keys its entries on its own sources too)."""
-    key = cache_key() if key is None else key
+    another key or name, or a payload that does not match its sha256)."""
+    key = cache_key()
     path = _entry(name, key)
     if path is None:
         return None
@@ -103,10 +108,9 @@ def read_entry(name: str, key: str | None = None) -> dict | None:
     return data["facts"]
 
 
-def write_entry(name: str, facts: dict, key: str | None = None) -> Path | None:
-    """Store ``facts`` (JSON-able) under ``name`` atomically (with ``key`` as in :func:`read_entry`);
-    the path, or None if not written."""
-    key = cache_key() if key is None else key
+def write_entry(name: str, facts: dict) -> Path | None:
+    """Store ``facts`` (JSON-able) under ``name`` atomically; the path, or None if not written."""
+    key = cache_key()
     path = _entry(name, key)
     if path is None:
         return None
@@ -126,56 +130,67 @@ def write_entry(name: str, facts: dict, key: str | None = None) -> Path | None:
     return path
 
 
-def _rational(text) -> sp.Rational | None:
-    if text is None:
-        return None
-    if not isinstance(text, str):
-        raise ValueError(f"not a rational: {text!r}")
-    value = Fraction(text)
+def _ratio_is(text: object, calculus: str) -> bool:
+    """``text`` is the string of 1 - theta of ``calculus`` (parsed as a fraction, never evaluated)."""
+    try:
+        return isinstance(text, str) and Fraction(text) == 1 - Calculus(calculus).theta
+    except (ValueError, ZeroDivisionError):
+        return False
+
+
+def _one_minus_theta(calculus: str) -> sp.Rational:
+    value = 1 - Calculus(calculus).theta
     return sp.Rational(value.numerator, value.denominator)
 
 
-def _lemma_from(facts: dict, calculus: str) -> phase_space.Lemma:
-    """The Lemma of a cached entry if it states what the proof establishes (the lemma holds, with
-    nu/mu = 1 - theta of ``calculus``); ValueError for anything else, a negative fact included."""
-    holds, ratio = facts["holds"], _rational(facts["nu_over_mu"])
-    expected = 1 - Calculus(calculus).theta
-    if holds is not True or ratio is None or ratio != sp.Rational(expected.numerator, expected.denominator):
-        raise ValueError(f"not the proven lemma of the {calculus} calculus: holds = {holds!r}, nu/mu = {ratio}")
-    return phase_space.Lemma(True, ratio)
+@cache
+def lemma(mode: str, dim: int, calculus: str) -> Lemma:
+    """:func:`.mode_proofs.zero_current`, from the cache (only: holds, with nu/mu = 1 - theta) or proven."""
+    modes.check_mode(mode, dim)
+    name = f"zero_current_{mode}_{dim}d_{calculus}"
+    found = read_entry(name)
+    if isinstance(found, dict) and found.get("holds") is True and _ratio_is(found.get("nu_over_mu"), calculus):
+        return Lemma(True, _one_minus_theta(calculus))
+    proven = mode_proofs.zero_current(mode, dim, calculus)
+    if proven.holds:
+        write_entry(name, {"holds": True, "nu_over_mu": str(proven.nu_over_mu)})
+    return proven
 
 
 @cache
-def zero_current(dim: int, calculus: str) -> phase_space.Lemma:
-    """:func:`fricgen.derive.noise.phase_space.zero_current_lemma`, read from the cache or proven and stored."""
-    name = f"zero_current_{dim}d_{calculus}"
-    facts = read_entry(name)
-    if facts is not None:
-        try:
-            return _lemma_from(facts, calculus)
-        except (KeyError, TypeError, ValueError, ZeroDivisionError):
-            pass  # a damaged or vacuous entry: prove again
-    lemma = phase_space.zero_current_lemma(dim, calculus)
-    ratio = None if lemma.nu_over_mu is None else str(lemma.nu_over_mu)
-    write_entry(name, {"holds": lemma.holds, "nu_over_mu": ratio})
-    return lemma
+def facts(mode: str, dim: int) -> dict[str, bool]:
+    """:func:`.mode_proofs.mode_facts`, from the cache (exactly :data:`.mode_proofs.FACTS`, each true) or proven."""
+    modes.check_mode(mode, dim)
+    name = f"facts_{mode}_{dim}d"
+    found = read_entry(name)
+    if isinstance(found, dict) and sorted(found) == sorted(FACTS) and all(v is True for v in found.values()):
+        return {k: found[k] for k in FACTS}
+    proven = mode_proofs.mode_facts(mode, dim)
+    if all(proven.values()):
+        write_entry(name, dict(proven))
+    return proven
 
 
 @cache
-def covariance(dim: int) -> dict[str, bool]:
-    """:func:`fricgen.derive.noise.phase_space.covariance_identities`, read from the cache (only an entry
-    with exactly the identities of the dimension, each true) or proven and stored."""
-    name = f"covariance_{dim}d"
-    facts = read_entry(name)
-    if facts is not None and sorted(facts) == sorted(IDENTITIES.get(dim, ())) and all(v is True for v in facts.values()):
-        return dict(facts)
-    facts = phase_space.covariance_identities(dim)
-    write_entry(name, dict(facts))
-    return facts
+def combined(mode_set: tuple[str, ...], dim: int, calculus: str) -> dict[str, object]:
+    """:func:`.mode_proofs.combined_current` of the distinct modes ``mode_set``, from the cache (only:
+    holds, with nu/mu = 1 - theta for each of these modes) or proven."""
+    for mode in mode_set:
+        modes.check_mode(mode, dim)
+    name = f"combined_{'+'.join(mode_set)}_{dim}d_{calculus}"
+    found = read_entry(name)
+    ratios = found.get("nu_over_mu") if isinstance(found, dict) else None
+    if found and found.get("holds") is True and isinstance(ratios, dict) and sorted(ratios) == sorted(mode_set):
+        if all(_ratio_is(ratios[m], calculus) for m in mode_set):
+            return {"holds": True, "nu_over_mu": dict.fromkeys(mode_set, _one_minus_theta(calculus))}
+    result = mode_proofs.combined_current(mode_set, dim, calculus)
+    if result["holds"]:
+        write_entry(name, {"holds": True, "nu_over_mu": {m: str(r) for m, r in result["nu_over_mu"].items()}})
+    return result
 
 
 def clear_memory() -> None:
-    """Forget the facts held in this process (the next call reads the disk again; for tests)."""
-    zero_current.cache_clear()
-    covariance.cache_clear()
-    cache_key.cache_clear()
+    """Forget the facts read or proven through this cache in this process (the next call reads the
+    disk again; for tests)."""
+    for function in (lemma, facts, combined, cache_key):
+        function.cache_clear()

@@ -1,23 +1,29 @@
-"""The proofs of the contact modes on the pair phase space (12 momenta in 3-D, 6 in 2-D).
+"""The proofs on the pair phase space (12 momenta in 3-D, 6 in 2-D), one path for every contact mode.
 
-For each mode m (:mod:`fricgen.derive.noise.modes`), with masses, inertias and radii symbolic and
-unequal, and the unit normal n reduced modulo n . n = 1:
+For each mode m (:func:`fricgen.derive.noise.modes.describe`; sliding is one of them), with masses,
+inertias and radii symbolic and unequal, and the unit normal n reduced modulo n . n = 1:
 
 - :func:`mode_facts`: the engines' velocity of the mode is C_m v; their friction force and torques
-  are -C_m^T v_m f/u (so the power is v . F = -f u <= 0); their noise has covariance
-  sigma sigma^T / 2 = kT D C_m^T C_m; and C_m M^-1 C_m^T = mu_m Pi_m with Pi_m an orthogonal
-  projector (isotropic on the mode's space; mu_m = tr(K^2)/tr(K) read off K = C_m M^-1 C_m^T, and
+  are -C_m^T v_m f/u (so the power is v . F = -f u <= 0, F-9); every written form of their noise has
+  covariance sigma sigma^T / 2 = kT D C_m^T C_m (F-50; sliding: the paper's sigma_hat and its random
+  force and torque, F-24, F-25); and C_m M^-1 C_m^T = mu_m Pi_m with Pi_m an orthogonal projector
+  (isotropic on the mode's space; mu_m = tr(K^2)/tr(K) read off K = C_m M^-1 C_m^T, and
   K C_m = mu_m C_m proven), mu_m equal to the formula the engines use.
-- :func:`zero_current` (the lemma, as for sliding in :mod:`.phase_space`): for arbitrary D(u), f(u),
-  u (J^f + J^fn)/P_B = -C_m^T v_m [f - u D + X D'] with X read off the current of the calculus
-  (F-47..49) and X = (1 - theta) kT mu_m.
+- :func:`zero_current` (the lemma): for arbitrary D(u), f(u), the probability current of the
+  calculus, from its definition (F-47 Itô, F-48 Stratonovich, F-49 HK) with d ln P_B/dx = -v/kT
+  (F-17) and the chain rule for u = |v_m|, is u (J^f + J^fn)/P_B = -C_m^T v_m [f - u D + X D'].
+  X is not assumed: it is read off the current (the coefficient of D') and comes out as
+  X = (1 - theta) kT mu_m = nu_m kT, so the calculus alone fixes theta. Each law is left with the
+  scalar ODE (F-20), whose nu kT the verifier takes from here (fricgen.derive.noise.verification).
 - :func:`combined_current`: for several modes at once, each with its own law and an independent
   noise, (J^f + J^fn)/P_B = -sum_m C_m^T v_m [f_m - u_m D_m + X_m D_m'] / u_m on every component:
   the current of the sum is the sum of the modes' currents, whatever the cross-mobilities
-  C_a M^-1 C_b^T (:func:`cross_mobility`; sliding and rolling couple for unequal spheres). With a
+  C_a M^-1 C_b^T (:func:`mobility_matrix`; sliding and rolling couple for unequal spheres). With a
   noise shared by two modes the identity fails, and the proof says so.
 
-The physics: docs/physics-modes.md.
+Everything is exact polynomial algebra: D, D' and f are symbols, no simplification heuristics for
+the identities. The physics: docs/physics.md#zero-probability-current-proved-symbolically and
+docs/physics-modes.md.
 """
 
 from __future__ import annotations
@@ -28,8 +34,30 @@ from functools import cache
 import sympy as sp
 
 from ..law.symbols import kT
-from .modes import check_mode, explicit_velocity, friction_drift_of, inverse_mass, mobility_formula, mode_map, noise_matrix
-from .phase_space import CALCULI_THETA, Lemma, PairPhaseSpace, derivative_coefficient, pair_phase_space
+from .modes import check_mode, describe
+from .phase_space import PairPhaseSpace, pair_phase_space
+
+
+@dataclass(frozen=True)
+class Lemma:
+    """What the zero-current lemma proves for one mode, dimension and calculus.
+
+    Attributes:
+        holds: u (J^f + J^fn)/P_B + C_m^T v_m [f - u D + X D'] = 0 on every component, with X read
+            off the current (not assumed) and X = c kT mu_m for a rational number c.
+        nu_over_mu: c = nu_m/mu_m = X/(kT mu_m) as derived from the current (1 - theta), None if
+            the current has no such form.
+    """
+
+    holds: bool
+    nu_over_mu: sp.Rational | None
+
+    def __bool__(self) -> bool:
+        return self.holds
+
+    def nu_kT(self, mobility: sp.Expr) -> sp.Expr | None:
+        """X = nu kT for a contact of mobility ``mu`` (a symbol, number or expression)."""
+        return None if self.nu_over_mu is None else self.nu_over_mu * kT * mobility
 
 
 @dataclass(frozen=True)
@@ -40,6 +68,11 @@ class Placeholders:
     slope: sp.Symbol
     friction: sp.Symbol
     speed: sp.Symbol
+
+    @property
+    def residual(self) -> sp.Expr:
+        """f - u D, the part of the bracket without D'."""
+        return self.friction - self.speed * self.amplitude
 
 
 def placeholders(mode: str) -> Placeholders:
@@ -72,7 +105,7 @@ def reduce_unit(space: PairPhaseSpace, expr: sp.Expr) -> sp.Expr:
 
 def mobility_matrix(space: PairPhaseSpace, a: str, b: str) -> sp.Matrix:
     """C_a M^-1 C_b^T, each entry reduced modulo n . n = 1 and factored."""
-    product = mode_map(a, space.dim) * inverse_mass(space) * mode_map(b, space.dim).T
+    product = describe(a, space.dim).contact_map * space.inverse_mass * describe(b, space.dim).contact_map.T
     return product.applyfunc(lambda e: sp.factor(space.reduce(e)))
 
 
@@ -82,8 +115,8 @@ def read_mobility(mode: str, dim: int, radius: sp.Expr | None = None) -> tuple[s
     (None, 0) unless K C_m = mu_m C_m holds exactly (then K/mu_m is a symmetric idempotent, an
     orthogonal projector whose range holds every v_m: the mode is isotropic)."""
     space = pair_phase_space(dim)
-    contact = mode_map(mode, dim, radius)
-    k = (contact * inverse_mass(space) * contact.T).applyfunc(space.reduce)
+    contact = describe(mode, dim, radius).contact_map
+    k = (contact * space.inverse_mass * contact.T).applyfunc(space.reduce)
     trace, trace2 = sp.factor(space.reduce(k.trace())), sp.factor(space.reduce((k * k).trace()))
     if trace == 0:
         return None, 0
@@ -94,25 +127,29 @@ def read_mobility(mode: str, dim: int, radius: sp.Expr | None = None) -> tuple[s
     return mobility, int(rank) if rank.is_Integer else 0
 
 
+#: The names of :func:`mode_facts`, the same for every mode and dimension.
+FACTS = ("velocity_is_C_v", "forces_from_C_transpose", "dissipation", "noise_covariance", "isotropic", "mobility_formula")
+
+
 @cache
 def mode_facts(mode: str, dim: int) -> dict[str, bool]:
     """The law-independent facts of ``mode`` in ``dim`` D (each an exact identity; see the module)."""
-    check_mode(mode, dim)
-    space = pair_phase_space(dim)
-    contact, velocity = mode_map(mode, dim), explicit_velocity(mode, space)
+    described = describe(mode, dim)
+    space, contact, velocity = described.space, described.contact_map, described.velocity
     over_u = sp.Symbol("f_over_u", real=True)
-    drift = friction_drift_of(mode, space, over_u)
-    sigma = noise_matrix(mode, space)
+    drift = described.friction_drift(over_u)
+    target = (contact.T * contact).applyfunc(sp.expand)
     mobility, rank = read_mobility(mode, dim)
     expected_rank = 1 if dim == 2 or mode == "spinning" else 2
-    return {
+    facts = {
         "velocity_is_C_v": _equal(space, contact * space.velocities, velocity),
         "forces_from_C_transpose": _equal(space, drift, -over_u * contact.T * velocity),
         "dissipation": space.reduce(space.velocities.dot(drift) + over_u * velocity.dot(velocity)) == 0,
-        "noise_covariance": _equal(space, (sigma * sigma.T / 2).applyfunc(sp.expand), (contact.T * contact).applyfunc(sp.expand)),
+        "noise_covariance": all(_equal(space, (s * s.T / 2).applyfunc(sp.expand), target) for s in described.noises),
         "isotropic": mobility is not None and rank == expected_rank,
-        "mobility_formula": mobility is not None and sp.simplify(mobility - mobility_formula(mode, space)) == 0,
+        "mobility_formula": mobility is not None and sp.simplify(mobility - described.mobility) == 0,
     }
+    return {name: facts[name] for name in FACTS}
 
 
 def _noise_current(space: PairPhaseSpace, sigma: sp.Matrix, calculus: str, d) -> list[sp.Expr]:
@@ -141,10 +178,9 @@ def current(space: PairPhaseSpace, modes: tuple[str, ...], calculus: str, shared
     x = space.momenta
     parts = []
     for mode in modes:
-        held = placeholders(mode)
-        velocity = explicit_velocity(mode, space, radius)
-        q = sp.expand(velocity.dot(velocity))
-        parts.append((mode, held, [sp.diff(q, xb) / (2 * held.speed) for xb in x]))
+        held, described = placeholders(mode), describe(mode, space.dim, radius)
+        q = sp.expand(described.velocity.dot(described.velocity))
+        parts.append((described, held, [sp.diff(q, xb) / (2 * held.speed) for xb in x]))
 
     def d(expr: sp.Expr, b: int) -> sp.Expr:
         total = sp.diff(expr, x[b])
@@ -154,9 +190,9 @@ def current(space: PairPhaseSpace, modes: tuple[str, ...], calculus: str, shared
 
     drift = sp.zeros(len(x), 1)
     sigmas = []
-    for mode, held, _ in parts:
-        drift += friction_drift_of(mode, space, held.friction / held.speed, radius)
-        sigmas.append(sp.sqrt(kT * held.amplitude) * noise_matrix(mode, space, radius))
+    for described, held, _ in parts:
+        drift += described.friction_drift(held.friction / held.speed)
+        sigmas.append(sp.sqrt(kT * held.amplitude) * described.noise_matrix)
     if shared:
         width = max(s.shape[1] for s in sigmas)
         sigmas = [sum((sp.Matrix.hstack(s, sp.zeros(len(x), width - s.shape[1])) for s in sigmas), sp.zeros(len(x), width))]
@@ -164,36 +200,56 @@ def current(space: PairPhaseSpace, modes: tuple[str, ...], calculus: str, shared
     return drift + sp.Matrix(noise)
 
 
+def derivative_coefficient(space: PairPhaseSpace, flux: sp.Matrix, direction: sp.Matrix, held: Placeholders) -> sp.Expr | None:
+    """X with u J/P_B = -C_m^T v_m X D' + (terms without D'), read off one component of the current.
+
+    The D' part of the (reduced) component is compared with the (reduced) direction C_m^T v_m term
+    by term: their leading coefficients as polynomials in the momenta and the normal. None when no
+    component has a nonzero direction or the leading monomials differ (then no such X exists).
+    """
+    gens = (*space.momenta, *space.normal)
+    for j, g in zip(flux, direction):
+        reduced_g = space.reduce(g)
+        if reduced_g == 0:
+            continue
+        part = space.reduce(sp.expand(held.speed * j).coeff(held.slope))
+        left, right = sp.Poly(part, *gens), sp.Poly(reduced_g, *gens)
+        if left.is_zero:
+            return sp.Integer(0)
+        if left.LM() != right.LM():
+            return None
+        return sp.cancel(-left.LC() / right.LC())
+    return None
+
+
+def _direction(mode: str, dim: int) -> sp.Matrix:
+    """C_m^T v_m, with R_eff = RHO."""
+    described = describe(mode, dim, RHO)
+    return described.contact_map.T * described.velocity
+
+
 @cache
 def zero_current(mode: str, dim: int, calculus: str) -> Lemma:
     """u (J^f + J^fn)/P_B + C_m^T v_m [f - u D + X D'] = 0 for arbitrary D(u), f(u), on mode ``mode``.
 
-    X is read off the current (:func:`fricgen.derive.noise.phase_space.derivative_coefficient`) and
-    must equal c kT mu_m with a rational c (mu_m from :func:`read_mobility`); the identity is then
-    proven on every component. ``Lemma.nu_over_mu`` is c (1 - theta of the calculus)."""
+    X is read off the current (:func:`derivative_coefficient`) and must equal c kT mu_m with a
+    rational c (mu_m from :func:`read_mobility`); the identity is then proven on every component.
+    ``Lemma.nu_over_mu`` is c (1 - theta of the calculus)."""
     check_mode(mode, dim)
     space = pair_phase_space(dim)
     held = placeholders(mode)
     flux = current(space, (mode,), calculus)
-    direction = mode_map(mode, dim, RHO).T * explicit_velocity(mode, space, RHO)
+    direction = _direction(mode, dim)
     mobility, _ = read_mobility(mode, dim, RHO)
-    coefficient = _read_coefficient(space, flux, direction, held)
+    coefficient = derivative_coefficient(space, flux, direction, held)
     if coefficient is None or mobility is None:
         return Lemma(False, None)
     ratio = sp.simplify(coefficient / (kT * mobility))
     if not ratio.is_Rational:
         return Lemma(False, None)
-    residual = held.friction - held.speed * held.amplitude + ratio * mobility * kT * held.slope
+    residual = held.residual + ratio * mobility * kT * held.slope
     holds = all(reduce_unit(space, held.speed * j + g * residual) == 0 for j, g in zip(flux, direction))
     return Lemma(holds, ratio)
-
-
-def _read_coefficient(space: PairPhaseSpace, flux: sp.Matrix, direction: sp.Matrix, held: Placeholders) -> sp.Expr | None:
-    """The coefficient of D' in u J/P_B against -C^T v_m, in the placeholders of phase_space's reader."""
-    from .phase_space import DD_SYM, U_SYM
-
-    renamed = flux.xreplace({held.slope: DD_SYM, held.speed: U_SYM})
-    return derivative_coefficient(space, renamed, direction)
 
 
 @cache
@@ -218,12 +274,7 @@ def combined_current(modes: tuple[str, ...], dim: int, calculus: str, shared: bo
     product = sp.Mul(*(placeholders(m).speed for m in modes))
     for mode in modes:
         held = placeholders(mode)
-        residual = held.friction - held.speed * held.amplitude + lemmas[mode].nu_kT(read_mobility(mode, dim, RHO)[0]) * held.slope
-        total += (product / held.speed) * residual * (mode_map(mode, dim, RHO).T * explicit_velocity(mode, space, RHO))
+        residual = held.residual + lemmas[mode].nu_kT(read_mobility(mode, dim, RHO)[0]) * held.slope
+        total += (product / held.speed) * residual * _direction(mode, dim)
     holds = all(reduce_unit(space, product * j + g) == 0 for j, g in zip(flux, total))
     return {"holds": holds, "nu_over_mu": {m: lemmas[m].nu_over_mu for m in modes}}
-
-
-def zero_current_theta(calculus: str) -> sp.Rational:
-    """1 - theta of ``calculus``: the nu/mu that each mode's lemma must read off its current."""
-    return 1 - CALCULI_THETA[calculus]

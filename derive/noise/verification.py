@@ -11,27 +11,26 @@ Checks of :func:`prove` (names as in the report and in ``fricgen verify --json``
   theta, another calculus' amplitude) fails here. For the integral form (F-22) SymPy
   differentiates under the integral sign (Leibniz rule).
 - ``zero_current_3d`` / ``zero_current_2d``: (J^f + J^fn) P_B = 0 on the full pair phase space
-  (12 resp. 6 momentum components): the current of the calculus, from its definition (F-47..49),
-  equals -(residual / u) C^T u_perp for arbitrary D(u), f(u) (:mod:`fricgen.derive.noise.phase_space`), and the
-  residual with that dimension's X vanishes.
-- ``noise_covariance``: sigma sigma^T / 2 = kT D C^T C (F-50) for the paper's sigma_hat and for the
-  random force and torque (F-24, F-25), in 3-D and 2-D.
+  (12 resp. 6 momentum components) in each dimension where the law's contact mode exists (spinning:
+  3-D only): the current of the calculus, from its definition (F-47..49), equals
+  -(residual / u) C_m^T v_m for arbitrary D(u), f(u) (:func:`fricgen.derive.noise.mode_proofs.zero_current`),
+  and the residual with that dimension's X vanishes.
+- ``contact_mode``: the facts of the mode (:func:`fricgen.derive.noise.mode_proofs.mode_facts`): the
+  engines' velocity is C_m v, their forces and torques are -C_m^T v_m f/u (power -f u), and
+  C_m M^-1 C_m^T = mu_m x projector with mu_m read off and equal to the engines' formula.
+- ``noise_covariance``: sigma sigma^T / 2 = kT D C_m^T C_m (F-50) for every written form of the
+  noise (sliding: the paper's sigma_hat and its random force and torque, F-24, F-25), in each dimension.
 - ``boundary_condition``: for nu != 0, D is the decaying solution, D exp(-u^2/2X) -> 0 as
   u -> oo (the ODE alone admits adding C exp(u^2/2X)); HK has no free constant.
 - ``nonnegative_finite``: D >= 0 and finite for u >= 0: proven from the representation (F-22)
   (or D = f/u) with f >= 0, or by SymPy's assumptions; the limit u -> 0+ is finite (and >= 0 for
   kT = 1, mu = 7, equal spheres R = 1/2, m = 1); and confirmed numerically at the reference points
   of the kernel check (several kT, mu, w, r and parameter values, u up to 1e3 sqrt(nu kT)).
-The law-independent facts (lemma, covariance) are read from the on-disk cache of
-:mod:`fricgen.derive.noise.lemma_cache` when present, and proven (and stored) otherwise.
 
-A law on another contact mode (``mode = "rolling"`` or ``"spinning"``; docs/physics-modes.md) is
-proven the same way with that mode's map C_m and its mobility mu_m (the model's ``mobility``): the
-lemma is the mode's (:mod:`fricgen.derive.noise.mode_proofs`, cached by :mod:`.mode_cache`), in the
-dimensions where the mode exists (spinning: ``zero_current_3d`` only), and one more check,
-``contact_mode``: the engines' forces and torques are -C_m^T v_m f/u (power -f u), their noise has
-covariance kT D C_m^T C_m (``noise_covariance``), and C_m M^-1 C_m^T = mu_m x projector with mu_m
-read off and equal to the engines' formula. Sliding laws are proven and reported exactly as before.
+Every law is proven by this one path, whatever its contact mode (``mode = "sliding"``, the default,
+``"rolling"`` or ``"spinning"``; docs/physics-modes.md): C_m is the mode's map and mu_m its mobility
+(the model's ``mobility``). The law-independent facts (lemma, mode facts) are read from the on-disk
+cache of :mod:`fricgen.derive.noise.lemma_cache` when present, and proven (and stored) otherwise.
 """
 
 from __future__ import annotations
@@ -42,7 +41,7 @@ from dataclasses import dataclass, field
 import sympy as sp
 
 from ..law.symbols import kT, mu, r, u, w
-from . import lemma_cache, mode_cache
+from . import lemma_cache, modes
 from .derivation import Calculus, NoiseModel, branches, integral_amplitude
 from .reference import Point, reference_points, sample_problem
 
@@ -96,7 +95,8 @@ def prove(model: NoiseModel) -> Report:
     start = time.perf_counter()
     checks: dict[str, bool] = {}
     details: dict[str, str] = {}
-    dims = mode_cache.dimensions(model.law.mode)  # (3, 2); spinning (3,)
+    mode = model.law.mode
+    dims = modes.dimensions(mode)  # (3, 2); spinning (3,)
     scales = {dim: lemma_scale(model, dim) for dim in dims}
     a = scales[3]
     if a is None:
@@ -109,18 +109,15 @@ def prove(model: NoiseModel) -> Report:
         if not checks["ode_residual"]:
             details["ode_residual"] = _describe_residuals(model, residuals)
     for dim in dims:
-        lemma = mode_cache.lemma(model.law.mode, dim, model.calculus.value)
+        lemma = lemma_cache.lemma(mode, dim, model.calculus.value)
         same = scales[dim] is not None and a is not None and sp.simplify(scales[dim] - a) == 0
         checks[f"zero_current_{dim}d"] = lemma.holds and checks["ode_residual"] and same
-    if model.law.mode == "sliding":
-        identities = {f"{d}d_{k}": v for d in (3, 2) for k, v in lemma_cache.covariance(d).items()}
-    else:  # the mode's own facts (fricgen.derive.noise.mode_proofs.mode_facts), the covariance among them
-        facts = {f"{d}d_{k}": v for d in dims for k, v in mode_cache.facts(model.law.mode, d).items()}
-        identities = {k: v for k, v in facts.items() if k.endswith("noise_covariance")}
-        checks["contact_mode"] = all(facts.values())
-        details["contact_mode"] = f"{model.law.mode}: mu_m = C_m M^-1 C_m^T / projector, read off and equal to the formula"
-        if not checks["contact_mode"]:
-            details["contact_mode"] = f"{model.law.mode}: failed {[k for k, v in facts.items() if not v]}"
+    facts = {f"{d}d_{k}": v for d in dims for k, v in lemma_cache.facts(mode, d).items()}
+    identities = {k: v for k, v in facts.items() if k.endswith("noise_covariance")}
+    checks["contact_mode"] = all(facts.values())
+    details["contact_mode"] = f"{mode}: mu_m = C_m M^-1 C_m^T / projector, read off and equal to the formula"
+    if not checks["contact_mode"]:
+        details["contact_mode"] = f"{mode}: failed {[k for k, v in facts.items() if not v]}"
     checks["noise_covariance"] = all(identities.values())
     if not checks["noise_covariance"]:
         details["noise_covariance"] = f"failed: {[k for k, v in identities.items() if not v]}"
@@ -137,7 +134,7 @@ def lemma_scale(model: NoiseModel, dim: int = 3) -> sp.Expr | None:
     """nu kT of the model's calculus as the zero-current lemma derives it on the ``dim``-D pair phase
     space (independently of noise.py) for the law's contact mode, for the model's contact mobility
     (mu_m of that mode); None if the lemma fails."""
-    return mode_cache.lemma(model.law.mode, dim, model.calculus.value).nu_kT(model.mobility)
+    return lemma_cache.lemma(model.law.mode, dim, model.calculus.value).nu_kT(model.mobility)
 
 
 def _reduced(expr: sp.Expr) -> sp.Expr:

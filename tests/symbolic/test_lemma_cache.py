@@ -1,7 +1,7 @@
 """The on-disk cache of the law-independent lemmas: keyed, atomic, and never trusted when damaged.
 
 The prover is replaced by a counting stand-in, so these tests prove nothing expensive; that the real
-facts are right is test_phase_space's job (it proves them without the cache).
+facts are right is the job of test_modes and test_phase_space (they prove them without the cache).
 """
 
 import json
@@ -12,7 +12,8 @@ import pytest
 import sympy as sp
 
 from fricgen.derive.calculus import Calculus
-from fricgen.derive.noise import lemma_cache, phase_space
+from fricgen.derive.noise import lemma_cache, mode_proofs
+from fricgen.derive.noise.mode_proofs import FACTS, Lemma
 
 
 @pytest.fixture
@@ -21,14 +22,14 @@ def cache(tmp_path, monkeypatch):
     the lemma holds with nu/mu = 1 - theta)."""
     calls = []
 
-    def prove(dim, calculus):
+    def prove(mode, dim, calculus):
         calls.append((dim, calculus))
         ratio = 1 - Calculus(calculus).theta
-        return phase_space.Lemma(True, sp.Rational(ratio.numerator, ratio.denominator))
+        return Lemma(True, sp.Rational(ratio.numerator, ratio.denominator))
 
     monkeypatch.setenv(lemma_cache.CACHE_ENV, str(tmp_path / "cache"))
-    monkeypatch.setattr(phase_space, "zero_current_lemma", prove)
-    monkeypatch.setattr(phase_space, "covariance_identities", lambda dim: dict.fromkeys(lemma_cache.IDENTITIES[dim], True))
+    monkeypatch.setattr(mode_proofs, "zero_current", prove)
+    monkeypatch.setattr(mode_proofs, "mode_facts", lambda mode, dim: dict.fromkeys(FACTS, True))
     lemma_cache.clear_memory()
     yield tmp_path / "cache", calls
     lemma_cache.clear_memory()
@@ -40,16 +41,16 @@ def entries(folder):
 
 def test_cold_then_warm(cache):
     folder, calls = cache
-    assert lemma_cache.zero_current(3, "ito") == phase_space.Lemma(True, 1)
+    assert lemma_cache.lemma("sliding", 3, "ito") == Lemma(True, 1)
     assert calls == [(3, "ito")]
     (entry,) = entries(folder)
-    assert entry.startswith("zero_current_3d_ito-") and entry.endswith(".json")
+    assert entry.startswith("zero_current_sliding_3d_ito-") and entry.endswith(".json")
     lemma_cache.clear_memory()  # a new process
-    assert lemma_cache.zero_current(3, "ito") == phase_space.Lemma(True, 1)
+    assert lemma_cache.lemma("sliding", 3, "ito") == Lemma(True, 1)
     assert calls == [(3, "ito")]  # read, not proven again
-    assert lemma_cache.covariance(2) == {"sigma_hat": True}
+    assert lemma_cache.facts("rolling", 2) == dict.fromkeys(FACTS, True)
     lemma_cache.clear_memory()
-    assert lemma_cache.covariance(2) == {"sigma_hat": True}
+    assert lemma_cache.facts("rolling", 2) == dict.fromkeys(FACTS, True)
     assert len(calls) == 1
     assert not [name for name in entries(folder) if name.endswith(".tmp")]  # atomic: no leftovers
 
@@ -78,21 +79,21 @@ def _entry_text(name: str, facts: dict, key: str | None = None) -> str:
 )
 def test_damaged_or_foreign_entries_are_proven_again(cache, damage):
     folder, calls = cache
-    lemma_cache.zero_current(2, "hk")
+    lemma_cache.lemma("sliding", 2, "hk")
     (entry,) = folder.iterdir()
     good = {"holds": True, "nu_over_mu": "0"}
     if damage.startswith("KEY:"):
-        damage = _entry_text("zero_current_2d_hk", json.loads(damage[4:]))
+        damage = _entry_text("zero_current_sliding_2d_hk", json.loads(damage[4:]))
     elif damage == "UNSIGNED":
-        damage = json.dumps({"key": lemma_cache.cache_key(), "name": "zero_current_2d_hk", "facts": good})
+        damage = json.dumps({"key": lemma_cache.cache_key(), "name": "zero_current_sliding_2d_hk", "facts": good})
     elif damage == "TAMPERED":
-        data = json.loads(_entry_text("zero_current_2d_hk", good))
+        data = json.loads(_entry_text("zero_current_sliding_2d_hk", good))
         damage = json.dumps({**data, "facts": {"holds": True, "nu_over_mu": "1"}})
     elif damage == "OTHERNAME":
-        damage = _entry_text("zero_current_2d_ito", good)
+        damage = _entry_text("zero_current_sliding_2d_ito", good)
     entry.write_text(damage)
     lemma_cache.clear_memory()
-    assert lemma_cache.zero_current(2, "hk") == phase_space.Lemma(True, 0)
+    assert lemma_cache.lemma("sliding", 2, "hk") == Lemma(True, 0)
     assert len(calls) == 2
     assert json.loads(entry.read_text())["facts"] == good  # rewritten
 
@@ -100,16 +101,16 @@ def test_damaged_or_foreign_entries_are_proven_again(cache, damage):
 @pytest.mark.parametrize(
     ("name", "facts"),
     [
-        ("zero_current_3d_ito", {"holds": True, "nu_over_mu": "0"}),  # the HK ratio under Itô: D = f/u would verify
-        ("zero_current_3d_ito", {"holds": True, "nu_over_mu": "1/2"}),
-        ("zero_current_3d_ito", {"holds": True, "nu_over_mu": None}),
-        ("zero_current_3d_ito", {"holds": False, "nu_over_mu": "1"}),  # a negative fact is no source of truth either
-        ("covariance_3d", {}),  # no identity at all: "all true" would be vacuous
-        ("covariance_3d", {"sigma_hat": True}),  # one of the two identities of 3-D missing
-        ("covariance_3d", {"sigma_hat": True, "random_force": True, "extra": True}),
-        ("covariance_3d", {"other": True, "random_force": True}),
-        ("covariance_3d", {"sigma_hat": True, "random_force": 1}),
-        ("covariance_3d", {"sigma_hat": False, "random_force": True}),
+        ("zero_current_sliding_3d_ito", {"holds": True, "nu_over_mu": "0"}),  # the HK ratio under Itô: D = f/u would verify
+        ("zero_current_sliding_3d_ito", {"holds": True, "nu_over_mu": "1/2"}),
+        ("zero_current_sliding_3d_ito", {"holds": True, "nu_over_mu": None}),
+        ("zero_current_sliding_3d_ito", {"holds": False, "nu_over_mu": "1"}),  # a negative fact is no source of truth either
+        ("facts_sliding_3d", {}),  # no fact at all: "all true" would be vacuous
+        ("facts_sliding_3d", dict.fromkeys(FACTS[1:], True)),  # one of the facts missing
+        ("facts_sliding_3d", {**dict.fromkeys(FACTS, True), "extra": True}),
+        ("facts_sliding_3d", {**dict.fromkeys(FACTS[1:], True), "other": True}),
+        ("facts_sliding_3d", {**dict.fromkeys(FACTS, True), "isotropic": 1}),
+        ("facts_sliding_3d", {**dict.fromkeys(FACTS, True), "dissipation": False}),
     ],
 )
 def test_vacuous_or_wrong_facts_are_proven_again(cache, name, facts):
@@ -120,10 +121,10 @@ def test_vacuous_or_wrong_facts_are_proven_again(cache, name, facts):
     path = folder / f"{name}-{lemma_cache.cache_key()[:16]}.json"
     path.write_text(_entry_text(name, facts))
     if name.startswith("zero_current"):
-        assert lemma_cache.zero_current(3, "ito") == phase_space.Lemma(True, 1)
+        assert lemma_cache.lemma("sliding", 3, "ito") == Lemma(True, 1)
         assert calls == [(3, "ito")]
     else:
-        assert lemma_cache.covariance(3) == {"sigma_hat": True, "random_force": True}
+        assert lemma_cache.facts("sliding", 3) == dict.fromkeys(FACTS, True)
     stored = json.loads(path.read_text())["facts"]
     assert json.dumps(stored, sort_keys=True) != json.dumps(facts, sort_keys=True)  # rewritten with the proven facts
 
@@ -133,9 +134,9 @@ def test_the_proven_facts_are_read_back(cache):
     folder.mkdir()
     for calculus in ("ito", "stratonovich", "hk"):
         ratio = str(1 - Calculus(calculus).theta)
-        name = f"zero_current_3d_{calculus}"
+        name = f"zero_current_sliding_3d_{calculus}"
         (folder / f"{name}-{lemma_cache.cache_key()[:16]}.json").write_text(_entry_text(name, {"holds": True, "nu_over_mu": ratio}))
-        assert lemma_cache.zero_current(3, calculus).holds
+        assert lemma_cache.lemma("sliding", 3, calculus).holds
     assert calls == []
 
 
@@ -145,7 +146,7 @@ def test_an_entry_that_is_not_a_small_regular_file_is_a_miss_never_a_wait(cache,
     bounded in time (a thread with a deadline) and in size."""
     folder, calls = cache
     folder.mkdir()
-    path = folder / f"zero_current_3d_ito-{lemma_cache.cache_key()[:16]}.json"
+    path = folder / f"zero_current_sliding_3d_ito-{lemma_cache.cache_key()[:16]}.json"
     if kind == "fifo":
         os.mkfifo(path)
     elif kind == "folder":
@@ -153,15 +154,15 @@ def test_an_entry_that_is_not_a_small_regular_file_is_a_miss_never_a_wait(cache,
     elif kind == "dangling":
         path.symlink_to(folder / "nowhere")
     else:
-        path.write_text(" " * (lemma_cache.MAX_ENTRY + 1) + _entry_text("zero_current_3d_ito", {"holds": True, "nu_over_mu": "1"}))
+        path.write_text(" " * (lemma_cache.MAX_ENTRY + 1) + _entry_text("zero_current_sliding_3d_ito", {"holds": True, "nu_over_mu": "1"}))
     result = []
-    reader = threading.Thread(target=lambda: result.append(lemma_cache.read_entry("zero_current_3d_ito")), daemon=True)
+    reader = threading.Thread(target=lambda: result.append(lemma_cache.read_entry("zero_current_sliding_3d_ito")), daemon=True)
     reader.start()
     reader.join(10)
     assert not reader.is_alive(), "read_entry waited on a non-regular file"
     assert result == [None]
     if kind != "folder":
-        assert lemma_cache.zero_current(3, "ito").holds and calls == [(3, "ito")]
+        assert lemma_cache.lemma("sliding", 3, "ito").holds and calls == [(3, "ito")]
 
 
 def test_key_follows_sources_generator_and_sympy(cache, tmp_path, monkeypatch):
@@ -193,12 +194,12 @@ def test_line_ends_do_not_change_the_key(cache, tmp_path, monkeypatch):
 
 def test_a_changed_source_is_a_cache_miss(cache, tmp_path, monkeypatch):
     folder, calls = cache
-    lemma_cache.zero_current(2, "ito")
+    lemma_cache.lemma("sliding", 2, "ito")
     source = tmp_path / "phase_space.py"
     source.write_text("# edited\n")
     monkeypatch.setattr(lemma_cache, "SOURCES", (source,))
     lemma_cache.clear_memory()
-    lemma_cache.zero_current(2, "ito")
+    lemma_cache.lemma("sliding", 2, "ito")
     assert len(calls) == 2 and len(entries(folder)) == 2
 
 
@@ -218,11 +219,21 @@ def test_folder_choice(monkeypatch, tmp_path):
 def test_switched_off_or_unwritable_cache_still_proves(cache, monkeypatch, tmp_path):
     folder, calls = cache
     monkeypatch.setenv(lemma_cache.CACHE_ENV, "off")
-    assert lemma_cache.zero_current(3, "stratonovich").holds
+    assert lemma_cache.lemma("sliding", 3, "stratonovich").holds
     assert lemma_cache.write_entry("x", {}) is None
     blocker = tmp_path / "file"
     blocker.write_text("not a folder")
     monkeypatch.setenv(lemma_cache.CACHE_ENV, str(blocker / "cache"))
     lemma_cache.clear_memory()
-    assert lemma_cache.zero_current(3, "stratonovich").holds
+    assert lemma_cache.lemma("sliding", 3, "stratonovich").holds
     assert len(calls) == 2 and not folder.exists()
+
+
+def test_a_refuted_fact_is_not_stored(cache, monkeypatch):
+    """Only what the proof established is kept: a lemma that fails is proven again next time."""
+    folder, calls = cache
+    monkeypatch.setattr(mode_proofs, "zero_current", lambda *args: calls.append(args) or Lemma(False, None))
+    assert not lemma_cache.lemma("rolling", 3, "ito")
+    lemma_cache.clear_memory()
+    assert not lemma_cache.lemma("rolling", 3, "ito")
+    assert len(calls) == 2 and (not folder.exists() or entries(folder) == [])

@@ -7,11 +7,12 @@ import pytest
 import sympy as sp
 
 from fricgen.derive import derive_noise, driver, load_law, make_law, verify
+from fricgen.derive.calculus import Calculus
 from fricgen.derive.law.lawdata import CONTACT_MODES, ModeError, mode_refusal
 from fricgen.derive.law.laws import LawError, law_text
-from fricgen.derive.noise import mode_cache, mode_proofs, modes
+from fricgen.derive.noise import lemma_cache, mode_proofs, modes
 from fricgen.derive.noise.contact import coupling, prove_contact
-from fricgen.derive.noise.phase_space import CALCULI_THETA, pair_phase_space
+from fricgen.derive.noise.phase_space import pair_phase_space
 
 CASES = [(m, d) for m, dims in CONTACT_MODES.items() for d in dims]
 ROLLING = """name = "rolling_linear"
@@ -65,7 +66,7 @@ def test_spinning_does_not_exist_in_2d():
     assert why.startswith("the spinning mode exists in 3-D only, not in 2-D") and "\n" not in why
     assert mode_refusal("rolling", 2) == mode_refusal("spinning", 3) == ""
     with pytest.raises(ModeError, match="3-D only"):
-        modes.mode_map("spinning", 2)
+        modes.describe("spinning", 2)
 
 
 def test_a_rolling_laws_module_states_its_mode_and_a_backend_without_the_mode_refuses_it(tmp_path):
@@ -112,10 +113,24 @@ def test_mobilities_read_off_C_M_CT():
     assert modes.mode_mobility("sliding", 1, 1, 0.5, 0.5) == 7
 
 
-def test_a_mobility_formula_off_by_a_factor_is_refuted(monkeypatch):
-    formula = modes.mobility_formula
-    monkeypatch.setattr(mode_proofs, "mobility_formula", lambda m, s, r=None: 2 * formula(m, s, r))
-    assert not mode_proofs.mode_facts.__wrapped__("rolling", 3)["mobility_formula"]
+def mutated(monkeypatch, **change):
+    """mode_proofs sees every mode with ``change(mode)`` applied to its fields (a wrong description)."""
+    describe = modes.describe
+    monkeypatch.setattr(mode_proofs, "describe", lambda *a: dataclasses.replace(m := describe(*a), **{k: f(m) for k, f in change.items()}))
+
+
+@pytest.mark.parametrize("mode", ["sliding", "rolling"])
+def test_a_mobility_formula_off_by_a_factor_is_refuted(monkeypatch, mode):
+    mutated(monkeypatch, mobility=lambda m: 2 * m.mobility)
+    assert not mode_proofs.mode_facts.__wrapped__(mode, 3)["mobility_formula"]
+
+
+def test_the_papers_random_force_is_a_written_form_of_the_sliding_noise(monkeypatch):
+    """Sliding in 3-D has two written noises, sigma_hat and (F-24, F-25); a sign slip in the latter is refuted."""
+    assert len(modes.describe("sliding", 3).noises) == 2
+    slip = sp.Symbol("n_z", real=True)
+    mutated(monkeypatch, noises=lambda m: (m.noises[0], *(g.subs(slip, 0) for g in m.noises[1:])))
+    assert not mode_proofs.mode_facts.__wrapped__("sliding", 3)["noise_covariance"]
 
 
 def test_sliding_and_rolling_couple_for_unequal_spheres_only():
@@ -136,30 +151,28 @@ def test_sliding_and_rolling_couple_for_unequal_spheres_only():
 # --- the zero-current lemma of each mode, and of several modes --------------------------------------
 
 
-@pytest.mark.parametrize(("mode", "dim"), [c for c in CASES if c[0] != "sliding"])
+def one_minus_theta(calculus):
+    value = 1 - Calculus(calculus).theta
+    return sp.Rational(value.numerator, value.denominator)
+
+
+@pytest.mark.parametrize(("mode", "dim"), [c for c in CASES if c != ("sliding", 3)])
 @pytest.mark.parametrize("calculus", ["ito", "stratonovich", "hk"])
 def test_zero_current_lemma_of_a_mode(mode, dim, calculus):
+    """Sliding in 3-D: tests/symbolic/test_phase_space.py."""
     lemma = mode_proofs.zero_current(mode, dim, calculus)
-    assert lemma.holds and lemma.nu_over_mu == 1 - CALCULI_THETA[calculus]
-
-
-@pytest.mark.parametrize("calculus", ["ito", "stratonovich", "hk"])
-def test_sliding_lemma_with_the_generic_current_agrees_in_2d(calculus):
-    """The modes' current (mode_proofs) proves phase_space's sliding lemma again, independently."""
-    assert mode_proofs.zero_current("sliding", 2, calculus).nu_over_mu == 1 - CALCULI_THETA[calculus]
+    assert lemma.holds and lemma.nu_over_mu == one_minus_theta(calculus)
 
 
 def test_the_lemma_reads_nu_kT_off_the_current(monkeypatch):
     """A rolling noise without its kT: the coefficient of D' is mu_m, not mu_m kT, and the lemma fails."""
-    matrix = modes.noise_matrix
-    monkeypatch.setattr(mode_proofs, "noise_matrix", lambda m, s, r=None: matrix(m, s, r) / sp.sqrt(sp.Symbol("kT", positive=True)))
+    mutated(monkeypatch, noises=lambda m: tuple(s / sp.sqrt(sp.Symbol("kT", positive=True)) for s in m.noises))
     assert not mode_proofs.zero_current.__wrapped__("rolling", 3, "ito").holds
 
 
 def test_a_torque_on_one_sphere_only_is_refuted(monkeypatch):
     """The rolling couple applied to sphere i alone: not C_r^T, and it does not dissipate f u."""
-    drift = modes.friction_drift_of
-    monkeypatch.setattr(mode_proofs, "friction_drift_of", lambda m, s, f, r=None: drift(m, s, f, r) - _k_block(drift(m, s, f, r)))
+    mutated(monkeypatch, drag=lambda m: m.drag - _k_block(m.drag))
     facts = mode_proofs.mode_facts.__wrapped__("rolling", 3)
     assert not facts["forces_from_C_transpose"] and not facts["dissipation"]
     assert not mode_proofs.zero_current.__wrapped__("rolling", 3, "ito").holds
@@ -173,7 +186,7 @@ def _k_block(vector):
 @pytest.mark.parametrize("calculus", ["ito", "stratonovich", "hk"])
 def test_sliding_and_rolling_together_in_2d(calculus):
     result = mode_proofs.combined_current(("sliding", "rolling"), 2, calculus)
-    assert result["holds"] and set(result["nu_over_mu"].values()) == {1 - CALCULI_THETA[calculus]}
+    assert result["holds"] and set(result["nu_over_mu"].values()) == {one_minus_theta(calculus)}
 
 
 @pytest.mark.parametrize("calculus", ["ito", "stratonovich", "hk"])
@@ -240,20 +253,20 @@ def test_a_mode_law_with_a_wrong_amplitude_fails_verify_contact(laws, mode_laws)
 
 
 @pytest.mark.parametrize("entry", [{"holds": True, "nu_over_mu": "1"}, {"holds": False, "nu_over_mu": "1/2"}, {"holds": True}])
-def test_the_mode_cache_keeps_only_what_the_proof_establishes(lemma_cache_folder, monkeypatch, entry):
-    """An entry is used only if it states the proven lemma (holds, nu/mu = 1 - theta); a vacuous,
-    negative or foreign one is proven again and rewritten. Keyed on modes.py etc. besides lemma_cache's sources."""
+def test_the_lemma_cache_keeps_only_what_the_proof_establishes(lemma_cache_folder, monkeypatch, entry):
+    """An entry of a mode's lemma is used only if it states the proven lemma (holds, nu/mu = 1 - theta);
+    a vacuous, negative or foreign one is proven again and rewritten. The key covers modes.py and mode_proofs.py."""
     calls, prove = [], mode_proofs.zero_current
     monkeypatch.setattr(mode_proofs, "zero_current", lambda *args: calls.append(args) or prove(*args))
-    name, key = "mode_zero_current_rolling_2d_stratonovich", mode_cache.cache_key()
-    assert key and key != mode_cache.lemma_cache.cache_key()
-    mode_cache.zero_current.cache_clear()
-    assert mode_cache.zero_current("rolling", 2, "stratonovich").nu_over_mu == sp.Rational(1, 2)
-    mode_cache.zero_current.cache_clear()
-    assert mode_cache.zero_current("rolling", 2, "stratonovich").nu_over_mu == sp.Rational(1, 2)
+    assert {p.name for p in lemma_cache.SOURCES} >= {"phase_space.py", "modes.py", "mode_proofs.py", "lemma_cache.py"}
+    name = "zero_current_rolling_2d_stratonovich"
+    lemma_cache.lemma.cache_clear()
+    assert lemma_cache.lemma("rolling", 2, "stratonovich").nu_over_mu == sp.Rational(1, 2)
+    lemma_cache.lemma.cache_clear()
+    assert lemma_cache.lemma("rolling", 2, "stratonovich").nu_over_mu == sp.Rational(1, 2)
     proven = len(calls)  # 1 with a fresh cache folder, 0 if an earlier test stored the entry
-    mode_cache.lemma_cache.write_entry(name, entry, key)
-    mode_cache.zero_current.cache_clear()
-    assert mode_cache.zero_current("rolling", 2, "stratonovich").nu_over_mu == sp.Rational(1, 2)
+    lemma_cache.write_entry(name, entry)
+    lemma_cache.lemma.cache_clear()
+    assert lemma_cache.lemma("rolling", 2, "stratonovich").nu_over_mu == sp.Rational(1, 2)
     assert len(calls) == proven + 1
-    assert mode_cache.lemma_cache.read_entry(name, key) == {"holds": True, "nu_over_mu": "1/2"}
+    assert lemma_cache.read_entry(name) == {"holds": True, "nu_over_mu": "1/2"}

@@ -3,7 +3,7 @@
 
 The noise model's own nu kT (NoiseModel.variance_scale) cannot vouch for itself: a D derived with a
 wrong nu kT solves the ODE written with that same wrong nu kT. The verifier therefore takes nu kT
-from the zero-current lemma on the pair phase space (fricgen.derive.noise.phase_space), and the blind spot that
+from the zero-current lemma on the pair phase space (fricgen.derive.noise.mode_proofs), and the blind spot that
 it closes is shown here first. Mutations are made by monkeypatching or dataclasses.replace, never by
 editing a source file.
 """
@@ -19,6 +19,7 @@ from fricgen.derive.backends import special_functions
 from fricgen.derive.backends.numba_kernels import modules
 from fricgen.derive.calculus import Calculus
 from fricgen.derive.noise.derivation import NoiseModel
+from fricgen.derive.noise.modes import describe
 from fricgen.derive.noise.phase_space import pair_phase_space
 from fricgen.derive.noise.verification import lemma_scale, ode_residuals
 
@@ -112,12 +113,13 @@ def test_integral_with_the_ito_exponent_labelled_stratonovich_is_caught(laws):
     assert PHYSICS | {"boundary_condition"} <= failed(report), report.checks
 
 
-def test_mobility_of_noise_py_is_the_phase_space_mobility():
-    """contact_mobility (noise.py) and the pair phase space (phase_space.py) agree on mu."""
+def test_mobility_of_noise_py_is_the_sliding_modes_mobility():
+    """contact_mobility (derivation.py) and the sliding mode on the pair phase space (modes.py) agree on mu."""
     space = pair_phase_space(3)
     m_i, m_k, inertia_i, inertia_k = space.masses
     radius_i, radius_k = space.radii
-    assert sp.simplify(contact_mobility(m_i, m_k, radius_i, radius_k, inertia_i, inertia_k) - space.mobility) == 0
+    mobility = describe("sliding", 3).mobility
+    assert sp.simplify(contact_mobility(m_i, m_k, radius_i, radius_k, inertia_i, inertia_k) - mobility) == 0
 
 
 def test_lemma_scale_follows_the_models_mobility(laws):
