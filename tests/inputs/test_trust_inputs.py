@@ -10,6 +10,8 @@ import json
 import os
 import re
 import shutil
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -208,3 +210,23 @@ def test_noise_uses_the_mobility_of_the_law_s_mode(capsys):
     assert results[0]["D"] == results[1]["D"] != results[2]["D"]
     assert main(args) == 0
     assert "(ito, rolling mode), w = 1, mu = 1.25 (the rolling mobility of two spheres m = 1, R = 1/2)" in capsys.readouterr().out
+
+
+def test_a_scheduler_address_that_answers_http_gets_one_line(inputs, tmp_path):
+    """An HTTP server given as --scheduler ws://... (Dask's websocket scheme): one line, no traceback, no
+    output folder (a fresh process, as a user runs it)."""
+    folder, _ = inputs
+    code = f"""
+import http.server, sys, threading
+class Quiet(http.server.SimpleHTTPRequestHandler):
+    def log_message(self, *args):
+        pass
+server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), Quiet)
+threading.Thread(target=server.serve_forever, daemon=True).start()
+from fricgen.app.cli import main
+address = f"ws://127.0.0.1:{{server.server_port}}"
+sys.exit(main(["sweep", {str(folder / "sweeps" / "sweep.toml")!r}, "--out", "out", "--scheduler", address]))
+"""
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, cwd=tmp_path)
+    assert done.returncode == 2 and done.stderr.count("\n") == 1, done.stderr
+    assert "as a Dask scheduler: Non-websocket response" in done.stderr and not (tmp_path / "out").exists()

@@ -261,7 +261,6 @@ def _connect(scheduler: str):
     from distributed import Client
 
     fix = "start `dask scheduler` and `dask worker ADDRESS`, or leave --scheduler away"
-    sys.unraisablehook = _quiet_abandoned_clients
     made: dict = {}
 
     def connect() -> None:
@@ -278,19 +277,10 @@ def _connect(scheduler: str):
     if thread.is_alive():
         raise ConfigError("--scheduler", f"{scheduler} did not answer as a Dask scheduler within {CONNECT_TIMEOUT:g} s", fix)
     error = made.get("error")
-    if isinstance(error, OSError | TimeoutError | ValueError):
-        raise ConfigError("--scheduler", f"cannot reach {scheduler}: {error}", fix) from error
-    if error is not None:
-        raise error
+    if error is not None:  # whatever the address answered (refused, an HTTP server to ws://, TLS not configured)
+        problem = " ".join(str(error).split()) or type(error).__name__
+        raise ConfigError("--scheduler", f"cannot connect to {scheduler} as a Dask scheduler: {problem}", fix) from error
     return made["client"]
-
-
-def _quiet_abandoned_clients(unraisable, default=sys.unraisablehook) -> None:
-    """sys.unraisablehook once a client was made: a Dask client that never connected (an address that
-    does not answer as a scheduler, an HTTP server) fails again when it is collected, in its __del__,
-    which Python would print as a traceback after the one-line error; that one error is dropped."""
-    if getattr(unraisable.object, "__qualname__", "") != "Client.__del__":
-        default(unraisable)
 
 
 def _run(client, specs: list[dict], total: int) -> dict[str, dict]:
