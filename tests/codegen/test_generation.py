@@ -12,6 +12,7 @@ import fricgen.derive.driver
 import fricgen.kernels
 from fricgen.derive.driver import GENERATED, GenerationError, generate
 from fricgen.derive.law import lawdata
+from fricgen.derive.law.catalogues import LawSearch
 from fricgen.derive.law.lawdata import CATALOGUE, POTENTIALS, read_law_data
 from fricgen.derive.noise.verification import Report
 from fricgen.errors import ConfigError, FricgenError
@@ -70,8 +71,8 @@ def test_stale_kernels_are_refused_with_the_command(tmp_path):
     path = catalogue / "linear.toml"
     path.write_text(path.read_text().replace("default = 1.0", "default = 2.0"))
     with pytest.raises(KernelError, match=f"stale.*`fricgen generate --laws {re.escape(str(catalogue.resolve()))} linear`"):
-        load_law_kernels("linear", catalogue=catalogue)
-    run = Path(load_law_kernels("coulomb", catalogue=catalogue).module.__file__)  # the package's own bytes: accepted
+        load_law_kernels("linear", LawSearch.only(catalogue))
+    run = Path(load_law_kernels("coulomb", LawSearch.only(catalogue)).module.__file__)  # the package's own bytes: accepted
     assert run.read_bytes() == (catalogue / "generated" / "laws" / "coulomb.py").read_bytes()  # run from the verified copy
 
 

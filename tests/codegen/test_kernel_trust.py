@@ -32,7 +32,7 @@ from fricgen.derive import derive_noise, load_law
 from fricgen.derive.backends.lammps_plugin.module import plugin_files
 from fricgen.derive.backends.numba_kernels.modules import law_module
 from fricgen.derive.law import manifests
-from fricgen.derive.law.catalogues import generate_command, inert, shell_word
+from fricgen.derive.law.catalogues import LawSearch, generate_command, inert, shell_word
 from fricgen.kernels import KernelError, load_law_kernels
 
 LAW = """name = "{name}"
@@ -271,7 +271,7 @@ def _copy(generated: Path, tmp_path: Path) -> Path:
 
 
 def test_kernels_of_a_weird_folder_load_and_run(generated):
-    kernels = load_law_kernels("trusty", generated)
+    kernels = load_law_kernels("trusty", LawSearch.only(generated))
     assert kernels.noise_amplitude("ito")(1.0, 3.0, 1.0, 7.0, 1.0, kernels.parameters()) == 6.0  # D = w gamma_f
     source = (generated / "generated" / "laws" / "trusty.py").read_text()
     assert f"# Regenerate: {inert(generate_command('trusty', generated))}\n" in source
@@ -283,16 +283,16 @@ def test_kernels_of_a_weird_folder_load_and_run(generated):
 @pytest.mark.parametrize("file", ["laws/trusty.py", "special.py", "__init__.py", "laws/__init__.py"])
 def test_an_edited_kernel_is_refused_before_anything_runs(generated, tmp_path, file):
     copy = _copy(generated, tmp_path)
-    load_law_kernels("trusty", copy)  # a copy holds fricgen's bytes: accepted (and recorded for the copy)
+    load_law_kernels("trusty", LawSearch.only(copy))  # a copy holds fricgen's bytes: accepted (and recorded for the copy)
     canary = tmp_path / "RAN"
     path = copy / "generated" / file
     text = path.read_text().replace("return gamma_f*u*w", "return 2*gamma_f*u*w")
     path.write_text(text + f"open({str(canary)!r}, 'w')\n")  # the header kept
     with pytest.raises(KernelError, match=f"{re.escape(file.split('/')[-1])} is not the file that fricgen wrote") as refused:
-        load_law_kernels("trusty", copy)
+        load_law_kernels("trusty", LawSearch.only(copy))
     assert "fricgen generate --laws" in str(refused.value) and not canary.exists()
     assert main(["generate", "--laws", str(copy), "trusty"]) == 0  # what the message says to do
-    assert load_law_kernels("trusty", copy).parameters()[0] == 2.0
+    assert load_law_kernels("trusty", LawSearch.only(copy)).parameters()[0] == 2.0
 
 
 def test_a_dropped_file_and_a_poisoned_pycache_never_run(generated, tmp_path):
@@ -320,7 +320,7 @@ def test_a_dropped_file_and_a_poisoned_pycache_never_run(generated, tmp_path):
         cfile=str(cache / f"trusty.{sys.implementation.cache_tag}.pyc"),
         invalidation_mode=py_compile.PycInvalidationMode.UNCHECKED_HASH,
     )
-    kernels = load_law_kernels("trusty", copy)
+    kernels = load_law_kernels("trusty", LawSearch.only(copy))
     assert kernels.friction(1.0, 1.0, 1.0, kernels.parameters()) == 2.0
     package = kernels.module.__name__.rsplit(".", 2)[0]
     with pytest.raises(ModuleNotFoundError):

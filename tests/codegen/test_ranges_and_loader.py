@@ -12,6 +12,7 @@ import pytest
 
 import fricgen.kernels
 from fricgen.derive.driver import generate
+from fricgen.derive.law.catalogues import LawSearch
 from fricgen.derive.law.lawdata import CATALOGUE, POSITIVE, Interval
 from fricgen.errors import ConfigError
 from fricgen.kernels import KernelError, LawKernels, load_law_kernels, load_potential
@@ -110,7 +111,7 @@ def test_a_missing_numba_is_reported_as_such(failing_import):
 def test_missing_kernels_are_still_missing_kernels(failing_import, tmp_path):
     failing_import(ModuleNotFoundError("No module named 'fricgen.generated.laws.linear'", name="fricgen.generated.laws.linear"))
     with pytest.raises(KernelError, match="no generated kernels for law linear: run `fricgen generate linear`"):
-        load_law_kernels("linear", catalogue=CATALOGUE)
+        load_law_kernels("linear", LawSearch.only(CATALOGUE))
 
 
 def test_another_import_error_is_reported_with_its_cause(failing_import):

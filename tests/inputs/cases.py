@@ -380,8 +380,8 @@ verify --laws nowhere | --laws | does not exist
 run passive --laws nowhere | --laws | does not exist
 run passive --set law.folder=nowhere | law.folder | does not exist
 run passive --set law.folder=1 | law.folder | must be a string
-frobnicate | command | invalid choice: 'frobnicate'
- | command | the following arguments are required
+frobnicate | COMMAND | invalid choice: 'frobnicate'
+ | COMMAND | the following arguments are required
 """
 
 
