@@ -123,7 +123,7 @@ def moved(snapshots) -> float:
 
 @pytest.mark.parametrize("noise", [False, True], ids=["friction", "friction+noise"])
 @pytest.mark.parametrize("dim", [2, 3])
-@pytest.mark.parametrize("law", sorted(LAWS))
+@pytest.mark.parametrize("law", ["coulomb_newton", "smooth_coulomb"])  # closed form; D from noise tables (Stribeck passed too, not kept)
 def test_one_rank_is_the_engines_step(lammps, plugin, tmp_path, law, dim, noise):
     snapshots = lammps_run(lammps, plugin(law), tmp_path, law, dim, noise)
     assert moved(snapshots) > 0.05  # the contacts acted
@@ -136,11 +136,11 @@ def test_one_rank_is_the_engines_step(lammps, plugin, tmp_path, law, dim, noise)
         ("coulomb_newton", "stratonovich", 2),
         ("coulomb_newton", "hk", 3),
         ("smooth_coulomb", "stratonovich", 3),
-        ("smooth_coulomb", "hk", 2),
     ],
 )
 def test_every_calculus_is_the_engines_step(lammps, plugin, tmp_path, law, calculus, dim):
-    """The Stratonovich and Haenggi-Klimontovich drifts of the proposal (theta = 1/2, 1; HK through df/du), one rank."""
+    """The Stratonovich and Haenggi-Klimontovich drifts of the proposal (theta = 1/2, 1; HK through df/du), one rank
+    (each law and calculus costs a compilation of the engine's step, about 20 s: three cases)."""
     snapshots = lammps_run(lammps, plugin(law), tmp_path, law, dim, True, calculus=calculus)
     assert moved(snapshots) > 0.05
     assert deviation(snapshots, engine_steps(law, dim, True, snapshots, calculus=calculus)) < 1e-12
