@@ -17,7 +17,6 @@ import pytest
 
 from fricgen.app.cli import lammps as plugin
 from fricgen.derive.law import manifests
-from fricgen.derive.law.catalogues import BUILT_IN
 
 LAW = "fake"
 
@@ -37,7 +36,7 @@ def setup(tmp_path, monkeypatch):
 
     monkeypatch.setattr(plugin, "_cmake", cmake)
     monkeypatch.setattr(plugin, "_tool", lambda name: name)
-    folder, written = plugin.emit_plugin(BUILT_IN.find(LAW), out=tmp_path / "sources")
+    folder, written = plugin.emit_plugin(Path(f"{LAW}.toml"), out=tmp_path / "sources")  # the texts are stood in for
     assert {status for _, status in written} == {"written"}
     lammps = plugin.Lammps(tmp_path / "lammps", tmp_path / "lammps", tmp_path / "lammps" / "lmp")
     return folder, lammps, builds
