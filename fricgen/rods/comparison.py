@@ -38,10 +38,16 @@ def exact_profile(config: RodConfig) -> RodProfile:
         The exact profile over one wavelength, with the O(1/L) correction of the ring.
 
     Raises:
-        ConfigError: for an open line, or a σ/λ that is no fraction k/m with 600 ≤ m ≤ 2400.
+        ConfigError: for an open line, a σ/λ that is no fraction k/m with 600 ≤ m ≤ 2400, or a density
+            too close to close packing for the theory in double precision (at model.n).
     """
     c = config.model
-    return rod_profile(field_energy(c), c.sigma, c.mean_density, c.wavelength, c.kT, *_theory(config), ring_length=c.length)
+    try:
+        return rod_profile(field_energy(c), c.sigma, c.mean_density, c.wavelength, c.kT, *_theory(config), ring_length=c.length)
+    except ConfigError as error:
+        if error.key != "rod_profile":
+            raise
+        raise ConfigError("model.n", error.problem, "use fewer rods") from error
 
 
 def _theory(config: RodConfig) -> tuple[Neighbours, int]:

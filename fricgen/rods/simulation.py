@@ -25,7 +25,6 @@ exponential in g and the force acts at contact (deviations() compares it for har
 from __future__ import annotations
 
 import math
-import warnings
 
 import numpy as np
 
@@ -33,13 +32,18 @@ from ..errors import ConfigError, SimulationError
 from . import bcd, mc
 from .comparison import RodProfiles, compressibility
 from .config import CONTACT_LAYERS, RodConfig
-from .interactions import field_kernels, pair_kernels, stability_ratio
+from .interactions import field_kernels, pair_kernels
 from .records import Ring, Stepping
+from .stability import warn_step
 
 #: Steps per compiled call of :meth:`RodSimulation.advance` (about 0.1 s per replica at N = 50): a
 #: compiled loop cannot be interrupted, so Ctrl-C takes effect between calls. The noise is keyed on
 #: the step, so any chunking gives the same trajectory bit for bit.
 CHUNK_STEPS = 20_000
+#: Monte Carlo moves per rod ring and compiled call of :meth:`RodSimulation.thermalize` (about 0.1 s per
+#: replica), so that Ctrl-C stops the start too; a sweep is keyed on its index, so any chunking gives
+#: the same start bit for bit.
+CHUNK_MOVES = 1_000_000
 
 
 class RodSimulation:
@@ -52,9 +56,7 @@ class RodSimulation:
     def __init__(self, config: RodConfig, positions: np.ndarray | None = None):
         self.config = config
         model = config.model
-        ratio = stability_ratio(model, config.numerics.dt)
-        if ratio > 0.1:
-            warnings.warn(f"mu max|f| dt / a = {ratio:.2g} is not << 1 (B-33): reduce dt", stacklevel=2)
+        warn_step(model, config.numerics.dt)
         self._field, field_params = field_kernels(model)  # energy and force kernels
         self._pair, pair_params, pair_range = pair_kernels(model)
         self.ring = Ring(model.length, model.sigma, model.mu, model.kT, model.diffusion, model.drive, model.wavelength,
@@ -90,9 +92,14 @@ class RodSimulation:
         """Metropolis sweeps (fricgen.rods.mc) towards the exact equilibrium of the configuration's model,
         with no time step: the wells fill as in equilibrium at once. Returns the acceptance ratio."""
         seed = self.config.numerics.seed
-        acceptance = mc.metropolis_sweeps(self.positions, self.ring, self._field.energy, self._pair.energy, sweeps, self.sweep, seed)
-        self.sweep += sweeps
-        return acceptance
+        chunk = max(1, CHUNK_MOVES // self.config.model.n)
+        accepted = 0.0
+        for done in range(0, sweeps, chunk):
+            count = min(chunk, sweeps - done)
+            field, pair = self._field.energy, self._pair.energy
+            accepted += count * mc.metropolis_sweeps(self.positions, self.ring, field, pair, count, self.sweep, seed)
+            self.sweep += count
+        return accepted / max(1, sweeps)
 
     def equilibrate(self, duration: float, dt: float | None = None) -> None:
         """Run ``duration`` time units without sampling, at time step ``dt`` (default: the config's)."""

@@ -35,7 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import brentq
-from scipy.sparse.linalg import LinearOperator, eigs
+from scipy.sparse.linalg import ArpackError, LinearOperator, eigs
 
 from ..errors import ConfigError
 
@@ -210,10 +210,28 @@ class _Chain:
         """Perron root and eigenvectors at beta P; returns the mean spacing <y - x>."""
         row, moment = _kernel_rows(self.grid, beta_p, self.weight)
         b, m = self.boltzmann, row.size
+        self.row = row
         self.value, self.right = _perron(lambda v: _correlate(row, b * v.ravel()), m, self.right)
         _, self.left = _perron(lambda v: b * _correlate(row, v.ravel(), transpose=True), m, self.left)
         self.beta_p = beta_p
         return float(self.left @ _correlate(moment, b * self.right) / (self.value * (self.left @ self.right)))
+
+    def residual(self) -> float:
+        """The largest error of the eigenvectors relative to each of their points, |K r - Lambda r| / (Lambda r)
+        and the same for l: near close packing the vectors span more decades than double precision holds
+        (factors exp(-beta P lambda)), and their small entries, hence rho = l r, are noise. Points where the
+        field's Boltzmann factor is below 1e-100 of its largest are left out."""
+        b, value = self.boltzmann, self.value
+        right = _correlate(self.row, b * self.right) - value * self.right
+        left = b * _correlate(self.row, self.left, transpose=True) - value * self.left
+        where = b > 1e-100  # not where the field alone empties the line (rho there below exp(-230) of its peak)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            worst = np.max(np.abs(np.concatenate([right / self.right, left / self.left])[np.tile(where, 2)])) / value
+        return float(worst) if np.isfinite(worst) else np.inf
+
+
+#: The largest relative error of the transfer operator's eigenvectors at any point that a profile may have.
+EIGENVECTOR_TOLERANCE = 1e-6
 
 
 def _infinite_profile(beta_u: np.ndarray, grid: Grid, mean_density: float, weight: PairWeight) -> tuple[RodProfile, _Chain]:
@@ -221,15 +239,28 @@ def _infinite_profile(beta_u: np.ndarray, grid: Grid, mean_density: float, weigh
     tonks_pressure = mean_density / (1 - mean_density * grid.sigma)
 
     def excess(log_beta_p: float) -> float:
-        return float(np.log(mean_density * chain.solve(np.exp(log_beta_p))))
+        with np.errstate(invalid="ignore", divide="ignore"):  # NaN near close packing: refused below
+            return float(np.log(mean_density * chain.solve(np.exp(log_beta_p))))
 
     lo, hi = np.log(tonks_pressure) - 1.0, np.log(tonks_pressure) + 1.0
-    while excess(lo) < 0:
-        lo -= 2.0
-    while excess(hi) > 0:
-        hi += 2.0
-    brentq(excess, lo, hi, xtol=1e-14, rtol=1e-15)
-    chain.solve(chain.beta_p)  # the state of the root
+    try:
+        while excess(lo) < 0:
+            lo -= 2.0
+        while excess(hi) > 0:
+            hi += 2.0
+        brentq(excess, lo, hi, xtol=1e-14, rtol=1e-15)
+        chain.solve(chain.beta_p)  # the state of the root
+        error = chain.residual()
+    except (ValueError, ArithmeticError, ArpackError):  # NaN spacings, no convergence: vectors beyond double precision
+        error = np.inf
+    if not error <= EIGENVECTOR_TOLERANCE:
+        packing = mean_density * grid.sigma
+        raise ConfigError(
+            "rod_profile",
+            f"the exact theory cannot be solved in double precision at rho_bar sigma = {packing:.4g} (too close to close packing, "
+            f"relative eigenvector error {error:.1e})",
+            "lower the density",
+        )
     rho = chain.left * chain.right
     rho *= mean_density / rho.mean()
     right = chain.right

@@ -224,6 +224,10 @@ def test_bad_configurations_are_refused():
         rod_config(gamma=1.0, p=1.0)
     with pytest.warns(UserWarning, match="B-33"):
         RodSimulation(rod_config(gamma=1.0, dt=1e-3))
+    with pytest.warns(UserWarning, match="the field's Euler step"):
+        RodSimulation(rod_config(n=20, dt=3e-3, replicas=2, start_sweeps=0))
+    with pytest.raises(ValueError, match="close packing"):
+        exact_profile(rod_config(n=197))  # the theory's vectors beyond double precision: rho < 0 without the check
     with pytest.raises(ValueError, match="gap_bins"):
         RodSimulation(rod_config(n=20, dt=1e-3, gap_bins=10, replicas=2, contact_layer="merge")).run(20)
     with pytest.raises(ValueError, match="pair potential"):

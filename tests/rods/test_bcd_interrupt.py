@@ -29,6 +29,17 @@ def test_any_chunking_gives_the_same_rods_bit_for_bit(layer, monkeypatch):
     assert np.array_equal(pieces.rho, profiles.rho) and np.array_equal(pieces.contact, profiles.contact, equal_nan=True)
 
 
+def test_the_monte_carlo_start_in_chunks_is_the_same_bit_for_bit(monkeypatch):
+    """The start's sweeps run in compiled calls of CHUNK_MOVES moves (so Ctrl-C stops it): any chunking gives
+    the same rods and acceptance."""
+    config = rod_config(n=20, length=20.0, sigma=0.5, replicas=2, bins=10, seed=5, start_sweeps=250)
+    whole = RodSimulation(config)
+    monkeypatch.setattr(simulation, "CHUNK_MOVES", 20 * 60)  # 60, 60, 60, 60, 10 sweeps
+    chunked = RodSimulation(config)
+    assert chunked.sweep == whole.sweep == 250 and chunked.acceptance == pytest.approx(whole.acceptance, rel=1e-12)
+    assert np.array_equal(chunked.positions, whole.positions)
+
+
 def _sigint_as_on_a_terminal():
     """In the child: SIGINT at its default, as under a terminal. A shell's background job inherits it
     ignored, and Python then keeps it ignored (no KeyboardInterrupt): the test would not test Ctrl-C."""

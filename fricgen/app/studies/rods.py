@@ -2,13 +2,17 @@
 theory, write the profile (CSV), a plot against the theory (PNG) and a summary (dict for JSON).
 
 Everything that can be checked is checked before the Monte Carlo start: the :class:`Study` (times,
-replicas, gap bins), the output folder and the exact theory (the field, the pair potential, sigma on
-the theory's grid), which is computed first. A folder that holds a result already is refused unless
-``--force``; the new files are written beside the old ones and renamed over them at the end."""
+replicas, gap bins), the output folder and every output path in it (a folder where a file goes is
+refused, with or without ``--force``), the time step against the schemes' range
+(fricgen.rods.stability) and the exact theory (the field, the pair potential, sigma on the theory's
+grid, a density it can solve), which is computed first. A folder that holds a result already is refused
+unless ``--force``; the new files are written beside the old ones, each a new file of its own (never
+through a link planted in the folder), and renamed over them at the end."""
 
 from __future__ import annotations
 
 import os
+import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -28,6 +32,7 @@ from ...rods import (
     field_energy,
     rod_profile,
 )
+from ...rods.stability import refuse_step
 from ...schema import Section
 from ..run.outputs import check_folder
 
@@ -81,8 +86,15 @@ def study(plan: Study, out: Path, force: bool = False) -> dict:
     config, duration, equilibration, extrapolate = plan.config, plan.time, plan.equilibrate, plan.extrapolate
     check_folder(out, "--out")
     taken = [name for name in OUTPUTS if (out / name).exists() or (out / name).is_symlink()]
+    for name in taken:  # a link is replaced itself (never its target); anything else but a file cannot be replaced
+        path = out / name
+        if not (path.is_symlink() or path.is_file()):
+            what = "a folder" if path.is_dir() else "not a regular file"
+            problem = f"{path} is {what}: the result cannot replace it; nothing was run"
+            raise ConfigError("--out", problem, "move it away, or give another --out")
     if taken and not force:
         raise ConfigError("--out", f"{out} already holds a result ({', '.join(taken)})", "give another --out, or --force to replace it")
+    refuse_step(config.model, config.numerics.dt)
     exact = exact_profile(config)
     start = time.perf_counter()
     measured = _sample(config, duration, equilibration)
@@ -113,16 +125,28 @@ def study(plan: Study, out: Path, force: bool = False) -> dict:
     written = []
     try:  # beside the old result, then each renamed over it: a stop leaves old files or new ones, never half of one
         for name, write in zip(
-            OUTPUTS, (lambda path: _write_csv(measured, exact, path), lambda path: _plot(measured, exact, baxter, config, path))
+            OUTPUTS, (lambda file: _write_csv(measured, exact, file), lambda file: _plot(measured, exact, baxter, config, file))
         ):
-            written.append(out / f".new-{name}")
-            write(written[-1])
+            handle, path = _new_file(out, name)
+            written.append(path)
+            with os.fdopen(handle, "wb") as file:
+                write(file)
         for name, path in zip(OUTPUTS, written):
-            os.replace(path, out / name)
+            os.replace(path, out / name)  # replaces a link at out / name itself, never its target
     finally:
         for path in written:
             path.unlink(missing_ok=True)
     return summary
+
+
+def _new_file(out: Path, name: str) -> tuple[int, Path]:
+    """A new file ``out/.new-NAME.XXXXXXXX`` of our own, opened for writing (O_EXCL: never a name that
+    exists, so never a link planted in the folder), with the permissions the umask gives new files."""
+    handle, path = tempfile.mkstemp(prefix=f".new-{name}.", dir=out)
+    mask = os.umask(0)
+    os.umask(mask)
+    os.fchmod(handle, 0o666 & ~mask)
+    return handle, Path(path)
 
 
 def _baxter(config: RodConfig, exact: RodProfile) -> RodProfile:
@@ -130,7 +154,7 @@ def _baxter(config: RodConfig, exact: RodProfile) -> RodProfile:
     return rod_profile(field_energy(c), c.sigma, c.mean_density, c.wavelength, c.kT, Neighbours(c.gamma), exact.x.size)
 
 
-def _write_csv(measured: RodProfiles, exact: RodProfile, path: Path) -> None:
+def _write_csv(measured: RodProfiles, exact: RodProfile, file) -> None:
     bins = measured.x.size
     columns = {
         "x": measured.x,
@@ -141,10 +165,10 @@ def _write_csv(measured: RodProfiles, exact: RodProfile, path: Path) -> None:
         "rho_exact": exact.bin_means(bins),
         "rho2_contact_exact": exact.bin_means(bins, "contact"),
     }
-    np.savetxt(path, np.column_stack(list(columns.values())), delimiter=",", header=",".join(columns), comments="", fmt="%.10g")
+    np.savetxt(file, np.column_stack(list(columns.values())), delimiter=",", header=",".join(columns), comments="", fmt="%.10g")
 
 
-def _plot(measured: RodProfiles, exact: RodProfile, baxter: RodProfile | None, config: RodConfig, path: Path) -> None:
+def _plot(measured: RodProfiles, exact: RodProfile, baxter: RodProfile | None, config: RodConfig, file) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -168,5 +192,5 @@ def _plot(measured: RodProfiles, exact: RodProfile, baxter: RodProfile | None, c
         axis.set(xlabel="x / $\\lambda$", ylabel="$\\rho_2(x, x + \\sigma)$")
         figure.suptitle(title)
     figure.tight_layout()
-    figure.savefig(path, dpi=120)
+    figure.savefig(file, dpi=120, format="png")
     plt.close(figure)
