@@ -251,6 +251,8 @@ def _infinite_profile(beta_u: np.ndarray, grid: Grid, mean_density: float, weigh
         brentq(excess, lo, hi, xtol=1e-14, rtol=1e-15)
         chain.solve(chain.beta_p)  # the state of the root
         error = chain.residual()
+    except ConfigError:
+        raise
     except (ValueError, ArithmeticError, ArpackError):  # NaN spacings, no convergence: vectors beyond double precision
         error = np.inf
     if not error <= EIGENVECTOR_TOLERANCE:
