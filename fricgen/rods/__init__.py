@@ -12,7 +12,8 @@ Public API::
 
 Modules: ``config`` (RodModel, RodNumerics, RodSampling in a RodConfig), ``interactions`` (field and
 neighbour force kernels), ``bcd`` (the compiled step), ``mc`` (Monte Carlo start), ``simulation``
-(replicas and profiles), ``theory`` (exact transfer-operator profiles), ``comparison``. Imports only
+(replicas and profiles), ``stability`` (the time step against the schemes' range), ``theory`` (exact
+transfer-operator profiles), ``comparison``. Imports only
 the kernel layer, the RNG and fricgen.schema/errors: never SymPy, the Langevin engine or the
 command line.
 """
