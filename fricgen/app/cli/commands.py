@@ -24,62 +24,8 @@ from ...errors import ConfigError, FricgenError
 from ..run.outputs import dumps, fail
 from . import laws
 from .arguments import Parser, UsageError, add_command, join_negative_values, named_by_flags
+from .help import DESCRIPTION, EXAMPLES, ROD_HELP, T0
 from .lammps import add_lammps_command
-
-#: What ``fricgen --help`` says first (plain text: argparse prints it as written).
-DESCRIPTION = """\
-fricgen: thermodynamically consistent frictional contacts for any friction law.
-One program, one subcommand per job; `fricgen CMD --help` for each.
-
-Units (spheres): diameter sigma = 1, mass m = 1, kT = 1, so time is in t0 = sqrt(m sigma^2 / kT).
-Units (rods, fricgen bcd): wavelength = 1, diffusion coefficient D = 1, kT = 1; time in wavelength^2 / D.
-
-Exit status: 0 done, 1 a physical failure (a failed check, a run that blew up), 2 bad input (one
-line on stderr naming the flag or key, the problem and the fix), 130 interrupted. A negative number
-after a flag is its value (--dt -1e-3 reads as --dt=-1e-3)."""
-
-#: Examples shown under each command's help (fricgen CMD --help) and in the command-line reference
-#: (fricgen lammps keeps its own in cli/lammps.py).
-EXAMPLES = {
-    "": """\
-fricgen demo                                   # the 2-D check with and without the contact noise
-fricgen verify coulomb_newton                  # derive D and prove zero probability current
-fricgen thermostat-check coulomb_newton --time 20
-fricgen generate my_law --laws ./laws          # your own law file ./laws/my_law.toml""",
-    "verify": """\
-fricgen verify                                 # every law of your folders, else of the catalogue
-fricgen verify coulomb_newton --calculus ito
-fricgen verify my_law --laws ./laws --json""",
-    "generate": """\
-fricgen generate my_law --laws ./laws          # kernels into ./laws/generated/
-fricgen generate linear --output /tmp/kernels  # inspect the emitted code""",
-    "noise": """\
-fricgen noise coulomb_newton --u 0,0.5,1,2 --r 1.0
-fricgen noise coulomb --calculus stratonovich --u 0,1 --w 2 --json
-fricgen noise my_law --laws ./laws --u 0,1 --w 1 --param kappa=3""",
-    "thermostat-check": """\
-fricgen thermostat-check coulomb_newton                        # 256 discs in 2-D for 40 t0
-fricgen thermostat-check coulomb_newton --no-contact-noise     # the inconsistent model fails
-fricgen thermostat-check linear --dim 3 --time 20 --seed 2
-fricgen thermostat-check coulomb_newton --rolling rolling_coulomb_newton --no-rolling-noise""",
-    "demo": """\
-fricgen demo
-fricgen demo --out /tmp/demo --json""",
-    "run": """\
-fricgen run passive --steps 2000
-fricgen run my_run.toml --set thermostat.dt=5e-4 --out results
-fricgen run my_run.toml --resume results/checkpoint.npz""",
-    "sweep": """\
-fricgen sweep mips --workers 2
-fricgen sweep my_sweep.toml --scheduler tcp://host:8786 --out sweep-results""",
-    "bcd": """\
-fricgen bcd                                    # hard rods in the cosine field, U0 = 6
-fricgen bcd --gamma 0.5 --out sticky           # sticky rods
-fricgen bcd --dt 1e-3 --extrapolate --json""",
-}
-
-#: The time unit of the spheres, in help texts.
-T0 = "t0 = sqrt(m sigma^2 / kT)"
 
 
 def _floats(text: str) -> list[float]:
@@ -241,37 +187,6 @@ def _warning_line(prog: str, message, category, filename, lineno, file=None, lin
     print(f"{prog}: warning: {' '.join(str(message).split())}", file=sys.stderr)
 
 
-#: What each flag of ``fricgen bcd`` sets, in the rods' units (wavelength = 1, D = 1, kT = 1; time in
-#: wavelength^2 / D); the defaults come from fricgen.rods.config.
-ROD_HELP = {
-    "n": "rods per ring",
-    "length": "ring length L, in wavelengths",
-    "sigma": "rod length, in wavelengths",
-    "U0": "amplitude of the field, in kT: U = (U0/2) cos(2 pi x) by default",
-    "wavelength": "period of the field, in wavelengths (the length unit)",
-    "field": "a generated external potential (cosine or ratchet)",
-    "field_params": "other parameters of the field, repeatable (default: none)",
-    "kT": "thermal energy, in kT",
-    "mu": "mobility, in D/kT",
-    "drive": "constant force on every rod, in kT per wavelength",
-    "gamma": "Baxter stickiness, dimensionless (0: hard rods)",
-    "p": "exponent of the delta_eps representation (B-31), dimensionless",
-    "eps": "range of the delta_eps representation (B-31), in wavelengths",
-    "pair": "a generated pair potential V(r) between neighbours instead of the sticky contact (e.g. wca)",
-    "pair_params": "parameters of the pair potential, repeatable (default: none)",
-    "pair_range": "gap beyond sigma where the pair potential ends, in wavelengths (< sigma)",
-    "dt": "time step, in wavelength^2/D (bias O(dt) with the bridge layer, O(sqrt(dt)) with merge)",
-    "seed": "noise seed, an integer",
-    "start_sweeps": "Monte Carlo sweeps of the equilibrium start",
-    "contact_layer": "how a step ends collisions: bridge (Brownian-bridge push, O(dt)), reflect (elastic) or merge (BCD's, O(sqrt(dt)))",
-    "replicas": "independent rings run in parallel, the samples of the errors",
-    "bins": "bins over one wavelength",
-    "gap_width": "bin width of the gap histogram (contact density), in wavelengths",
-    "gap_bins": "bins of the gap histogram",
-    "fit_bins": "gap bins fitted beyond the BCD layer",
-}
-
-
 def _rod_fields() -> dict:
     from ...rods.config import PARTS
     from ...schema import flat_fields
@@ -305,6 +220,11 @@ def _add_rod_flags(command: argparse.ArgumentParser) -> None:
         else:
             kind = next(t for t in (int, float, str) if t is hint or t in typing.get_args(hint))
             command.add_argument(flags[name], type=kind, default=default, help=text)
+
+
+def _param_flag(command: argparse.ArgumentParser, flag: str, text: str) -> None:
+    """A repeatable ``FLAG NAME=VALUE`` (law parameters)."""
+    command.add_argument(flag, type=_assignment, action="append", default=[], metavar="NAME=VALUE", help=text)
 
 
 def _command(commands, name: str, help: str) -> argparse.ArgumentParser:
@@ -343,14 +263,7 @@ def parser() -> argparse.ArgumentParser:
     where = noise.add_mutually_exclusive_group()
     where.add_argument("--r", type=float, help="centre distance, in sigma; w = w(r) from the law's weight")
     where.add_argument("--w", type=float, help="the weight w directly, in the unit of the law's weight (kT/sigma for -dU_WCA/dr)")
-    noise.add_argument(
-        "--param",
-        type=_assignment,
-        action="append",
-        default=[],
-        metavar="NAME=VALUE",
-        help="a law parameter, repeatable (default: the law file's)",
-    )
+    _param_flag(noise, "--param", "a law parameter, repeatable (default: the law file's)")
     noise.add_argument(
         "--mu",
         type=float,
@@ -379,33 +292,13 @@ def parser() -> argparse.ArgumentParser:
     check.add_argument("--n", type=int, help="number of spheres (default 256 in 2-D, 216 in 3-D)")
     check.add_argument("--phi", type=float, help="packing fraction, area in 2-D, volume in 3-D (default 0.6 in 2-D, 0.3 in 3-D)")
     check.add_argument("--dt", type=float, default=Thermostat.dt, help=f"time step, in {T0} (default {Thermostat.dt})")
-    check.add_argument(
-        "--kT", type=float, default=Thermostat.kT, help=f"thermal energy, the temperature checked, in kT (default {Thermostat.kT})"
-    )
-    check.add_argument(
-        "--time",
-        type=float,
-        default=PassiveCheck.total_time,
-        help=f"simulated time, in t0; the first 10%% equilibrate (default {PassiveCheck.total_time:g})",
-    )
+    check.add_argument("--kT", type=float, default=Thermostat.kT, help=f"thermal energy checked, in kT (default {Thermostat.kT})")
+    time = PassiveCheck.total_time
+    check.add_argument("--time", type=float, default=time, help=f"simulated time in t0, 10%% to equilibrate (default {time:g})")
     check.add_argument("--seed", type=int, default=PassiveCheck.seed, help=f"noise seed, an integer (default {PassiveCheck.seed})")
-    check.add_argument(
-        "--param",
-        type=_assignment,
-        action="append",
-        default=[],
-        metavar="NAME=VALUE",
-        help="a parameter of LAW, repeatable (default: the law file's)",
-    )
+    _param_flag(check, "--param", "a parameter of LAW, repeatable (default: the law file's)")
     for mode in ("rolling", "spinning"):
-        check.add_argument(
-            f"--{mode}-param",
-            type=_assignment,
-            action="append",
-            default=[],
-            metavar="NAME=VALUE",
-            help=f"a parameter of the {mode} law, repeatable (default: its file's)",
-        )
+        _param_flag(check, f"--{mode}-param", f"a parameter of the {mode} law, repeatable (default: its file's)")
         check.add_argument(f"--no-{mode}-noise", action="store_true", help=f"drop the {mode} law's noise alone (a negative control)")
     check.add_argument("--json", action="store_true", help="print the result as JSON (temperatures, errors, KL divergences, passed)")
     laws.add_laws_flag(check)
@@ -443,12 +336,7 @@ def parser() -> argparse.ArgumentParser:
     bcd = _command(commands, "bcd", "hard or sticky rods in a periodic field (cosine by default) by BCD, against the exact theory")
     _add_rod_flags(bcd)
     bcd.add_argument("--time", type=float, default=1.25, help="sampled time per replica, in wavelength^2/D (default 1.25)")
-    bcd.add_argument(
-        "--equilibrate",
-        type=float,
-        default=0.25,
-        help="BCD time after the Monte Carlo start, before sampling, in wavelength^2/D (default 0.25)",
-    )
+    bcd.add_argument("--equilibrate", type=float, default=0.25, help="time before sampling, in wavelength^2/D (default 0.25)")
     bcd.add_argument("--extrapolate", action="store_true", help="also run at dt/4 and extrapolate to dt = 0 (in dt; in sqrt(dt) for merge)")
     bcd.add_argument("--out", default="fricgen-bcd", metavar="DIR", help="output folder (default fricgen-bcd)")
     bcd.add_argument("--force", action="store_true", help="replace the result that --out holds already")
