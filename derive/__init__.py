@@ -14,6 +14,10 @@ The driver (:mod:`fricgen.derive.driver`) reads top to bottom::
     report = verify(model)                    # symbolic facts and the kernel check: report.verified
     generate(["stribeck"], catalogue="laws")  # Numba kernels in laws/generated/
 
+The package also exports the symbols that laws are written in, ``u``, ``r``, ``w``, ``kT`` and ``mu``
+(docs/physics.md#units-and-symbols), and :func:`reference_amplitude`, D evaluated independently
+of the kernels at high precision, for checks of one's own.
+
 Names are resolved lazily, so that the plain-data modules (``fricgen.derive.calculus``,
 ``fricgen.derive.law.lawdata``, ``fricgen.derive.law.catalogues``) can be imported by the runtime
 without SymPy.
@@ -38,6 +42,12 @@ _EXPORTS = {
     "derive_noise": "noise.derivation",
     "Report": "noise.verification",
     "prove": "noise.verification",
+    "reference_amplitude": "noise.reference",
+    "u": "law.symbols",
+    "r": "law.symbols",
+    "w": "law.symbols",
+    "kT": "law.symbols",
+    "mu": "law.symbols",
     "verify": "driver",
     "generate": "driver",
 }

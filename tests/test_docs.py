@@ -9,14 +9,20 @@
   a block reads).
 - Every ``fricgen CMD --flag`` written in the docs names a command and flags that exist.
 - Every pointer into docs/physics.md from the code names a section that exists.
+- The built pages load nothing from the network (math renders offline), every tutorial page shows its
+  figures (the notebooks' outputs of the ``executed_notebooks`` fixture), and every internal link and
+  anchor resolves.
 """
 
 import os
 import re
 import subprocess
 import sys
+import time
 import zlib
+from html.parser import HTMLParser
 from pathlib import Path
+from urllib.parse import unquote, urlsplit
 
 import pytest
 
@@ -55,25 +61,120 @@ def _python_blocks(path: Path) -> tuple[list[str], list[str], list[str]]:
 EXAMPLE_PAGES = [p for p in [*PAGES, ROOT / "README.md"] if _python_blocks(p)[0]]
 
 
-def test_the_site_builds_without_warnings(tmp_path):
+@pytest.fixture(scope="module")
+def site(tmp_path_factory, executed_notebooks):
+    """The site built once (warnings as errors), its tutorials from the session's executed notebooks."""
+    html = tmp_path_factory.mktemp("site") / "html"
+    env = {**os.environ, "MPLBACKEND": "Agg", "FRICGEN_DOCS_NOTEBOOK_CACHE": str(executed_notebooks.cache)}
+    start = time.perf_counter()
     build = subprocess.run(
-        [sys.executable, "-m", "sphinx", "-W", "--keep-going", "-b", "html", "-q", str(DOCS), str(tmp_path / "html")],
+        [sys.executable, "-m", "sphinx", "-W", "--keep-going", "-b", "html", "-q", str(DOCS), str(html)],
         capture_output=True,
         text=True,
         timeout=600,
-        env={**os.environ, "MPLBACKEND": "Agg"},
+        env=env,
     )
+    print(f"docs build: {time.perf_counter() - start:.0f} s")
+    return build, html
+
+
+def test_the_site_builds_without_warnings(site):
+    build, html = site
     assert build.returncode == 0, build.stderr[-6000:]
-    pages = {p.relative_to(tmp_path / "html").as_posix() for p in (tmp_path / "html").rglob("*.html")}
+    pages = {p.relative_to(html).as_posix() for p in html.rglob("*.html")}
     assert {"index.html", "guide/cli.html", "physics.html", "tutorials/define_a_friction_law.html", "api/langevin.html"} <= pages
     # Python references of the pages ({func}`fricgen.x`) name objects the API reference documents
     # (Sphinx only warns about those in nitpicky mode, which the code's internal docstrings would not pass).
-    documented = _inventory(tmp_path / "html" / "objects.inv")
+    documented = _inventory(html / "objects.inv")
     assert {"fricgen.langevin.Simulation", "fricgen.kernels.load_law_kernels", "fricgen.derive.derive_noise"} <= documented
     for path in PAGES:
         for match in ROLE.finditer(path.read_text()):
             target = (match.group(3) or match.group(2)).strip()
             assert target in documented, f"{path.relative_to(ROOT)}: {match.group(0)} is not in the API reference"
+
+
+class _Page(HTMLParser):
+    """The ids, links, loaded resources and output images of an HTML page."""
+
+    def __init__(self):
+        super().__init__()
+        self.ids, self.links, self.loads, self.figures, self.outputs = set(), [], [], [], 0
+        self._in_output = 0
+
+    def handle_starttag(self, tag, attrs):
+        attrs = dict(attrs)
+        self.ids.update(attrs[key] for key in ("id", "name") if attrs.get(key) and (key == "id" or tag == "a"))
+        if tag == "a" and attrs.get("href"):
+            self.links.append(attrs["href"])
+        if tag in ("script", "img", "iframe") and attrs.get("src") or tag == "link" and attrs.get("href"):
+            self.loads.append(attrs.get("src") or attrs["href"])
+        classes = (attrs.get("class") or "").split()
+        if tag == "div" and "cell_output" in classes:
+            self.outputs += 1
+        if tag == "img" and self.outputs:
+            self.figures.append(attrs.get("src", ""))
+
+
+def _pages(html: Path) -> dict[Path, _Page]:
+    pages = {}
+    for path in html.rglob("*.html"):
+        if "_static" in path.parts or "_sources" in path.parts:
+            continue
+        page = _Page()
+        page.feed(path.read_text())
+        pages[path] = page
+    return pages
+
+
+def _broken_links(html: Path, pages: dict[Path, _Page]) -> list[str]:
+    """Internal links (``page.html#anchor``) whose file or anchor does not exist."""
+    broken = []
+    for path, page in pages.items():
+        for link in page.links:
+            parts = urlsplit(link)
+            if parts.scheme or parts.netloc or link.startswith("mailto:"):
+                continue
+            target = (path.parent / unquote(parts.path)).resolve() if parts.path else path
+            if target.is_dir():
+                target = target / "index.html"
+            if not target.exists():
+                broken.append(f"{path.relative_to(html)}: {link} (no file)")
+            elif parts.fragment and target.suffix == ".html":
+                ids = pages[target].ids if target in pages else _pages_one(target)
+                if unquote(parts.fragment) not in ids:
+                    broken.append(f"{path.relative_to(html)}: {link} (no anchor)")
+    return broken
+
+
+def _pages_one(path: Path) -> set[str]:
+    page = _Page()
+    page.feed(path.read_text())
+    return page.ids
+
+
+def test_pages_work_offline_show_their_figures_and_link_right(site):
+    _, html = site
+    pages = _pages(html)
+    assert len(pages) >= 30, len(pages)
+    remote = [f"{path.relative_to(html)}: {load}" for path, page in pages.items() for load in page.loads if urlsplit(load).netloc]
+    assert not remote, f"pages load from the network: {remote[:10]}"
+    assert not [path for path in pages if re.search(r"cdn\.|jsdelivr|unpkg\.com", path.read_text())], "a page names a CDN"
+    math = pages[html / "physics-modes.html"]
+    assert any("mathjax" in load for load in math.loads), "MathJax is not loaded from _static"
+    for notebook in (ROOT / "notebooks").glob("*.ipynb"):
+        page = pages[html / "tutorials" / f"{notebook.stem}.html"]
+        assert page.outputs >= 2, f"tutorials/{notebook.stem}: {page.outputs} cell outputs"
+        assert page.figures and all((html / "tutorials" / src).exists() for src in page.figures), f"tutorials/{notebook.stem}: no figures"
+    machine = [path.relative_to(html) for path in pages if str(ROOT) in path.read_text() and "_modules" not in path.parts]
+    assert not machine, f"pages show this machine's path {ROOT}: {machine}"
+    broken = _broken_links(html, pages)
+    assert not broken, f"{len(broken)} broken internal links: {broken[:20]}"
+
+
+def test_the_link_check_sees_a_broken_anchor(tmp_path):
+    (tmp_path / "a.html").write_text('<p id="here"><a href="b.html#there">x</a><a href="#here">y</a><a href="c.html">z</a></p>')
+    (tmp_path / "b.html").write_text('<p id="elsewhere"></p>')
+    assert _broken_links(tmp_path, _pages(tmp_path)) == ["a.html: b.html#there (no anchor)", "a.html: c.html (no file)"]
 
 
 def _inventory(path: Path) -> set[str]:

@@ -10,6 +10,6 @@ from . import studies  # noqa: F401 (fills the registry of studies before any ru
 from .run.config import RunConfig, load_config, resolve_source
 from .run.runner import execute, plan
 from .studies.demo import run_demo
-from .studies.thermostat_check import thermostat_check
+from .studies.thermostat_check import passive_check, passive_run, thermostat_check
 
-__all__ = ["RunConfig", "execute", "load_config", "plan", "resolve_source", "run_demo", "thermostat_check"]
+__all__ = ["RunConfig", "execute", "load_config", "passive_check", "passive_run", "plan", "resolve_source", "run_demo", "thermostat_check"]
