@@ -38,7 +38,7 @@ def test_thermostat_check_passes_kT_to_the_check(monkeypatch, capsys):
     module = importlib.import_module("fricgen.app.studies.thermostat_check")  # fricgen.app exports a function of that name
     seen = []
 
-    def fake_run(check):
+    def fake_run(check, law):
         seen.append(check)
         raise KeyboardInterrupt  # stop before the simulation: the exit status of Ctrl-C
 

@@ -27,6 +27,7 @@ from pathlib import Path
 
 import pytest
 
+from fricgen import rng
 from fricgen.app.cli import main
 from fricgen.derive import derive_noise, load_law
 from fricgen.derive.backends.lammps_plugin.module import plugin_files
@@ -199,7 +200,7 @@ def printed(tmp_path_factory):
         model = derive_noise(law, "ito")
         source = f"{folder.name}/trusty.toml"
         module = law_module(law, {"ito": model}, law.source_hash, source, generate_command("trusty", folder))
-        texts[key] = {"trusty.py": module, **plugin_files(law, model, law.source_hash, source)}
+        texts[key] = {"trusty.py": module, **plugin_files(law, model, law.source_hash, source, rng.ZIGGURAT)}
     return texts
 
 

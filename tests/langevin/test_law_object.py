@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 
 import fricgen
-from fricgen.derive.driver import generate
-from fricgen.errors import ConfigError, KernelError
 from fricgen.app.run.build import resolve_law
+from fricgen.derive.driver import generate
 from fricgen.derive.law.catalogues import BUILT_IN
+from fricgen.errors import ConfigError, KernelError
 from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, lattice_state, load_checkpoint, save_checkpoint
 from fricgen.langevin.contact_law import ContactLaw
 
