@@ -22,8 +22,8 @@ import pytest
 
 import fricgen
 from fricgen.app.cli.lammps import build_plugin, emit_plugin, ziggurat
-from fricgen.derive.backends.lammps_plugin.code import support
 from fricgen.derive.backends.lammps_plugin.mode_code import STREAMS, ziggurat_support
+from fricgen.derive.backends.lammps_plugin.support_code import support
 from fricgen.derive.driver import generate
 from fricgen.derive.law.catalogues import GENERATED
 from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, State, Thermostat

@@ -35,10 +35,12 @@ from ...law.laws import FrictionLaw
 from ...law.names import camel
 from ...noise.derivation import NoiseModel
 from ..printing import header
-from .code import amplitude_kernel, law_kernels, potential_kernels, slope_kernel, support, wca
+from .code import amplitude_kernel, law_kernels, potential_kernels, slope_kernel, wca
 from .fix_code import exact_inputs, fix_files, plugin_fields
 from .mode_code import mode_compute, mode_fields, ziggurat_code, ziggurat_support
-from .templates import HEADER, PAIR_LOOP, PLUGIN, PLUGIN_ABI, SLIDING_COMPUTE, SOURCE
+from .plugin_source import PLUGIN, PLUGIN_ABI
+from .support_code import support
+from .templates import HEADER, PAIR_LOOP, SLIDING_COMPUTE, SOURCE
 
 #: Gauss–Legendre order of the quadrature of (F-22), as fricgen.derive.backends.numba_kernels.modules.QUADRATURE_ORDER.
 QUADRATURE_ORDER = 10

@@ -1,0 +1,395 @@
+"""The C++ text of the LAMMPS fix ``fricgen/exact/<law>``: its header and its source, as templates that
+fricgen.derive.backends.lammps_plugin.fix_code fills (the law's kernels, the ported contact step, the
+calculi); the design is in fix_code's docstring and docs/guide/lammps.md#the-exact-contact-step."""
+
+from string import Template
+
+from .templates import LAW_CONSTANTS
+
+FIX_HEADER = Template("""#ifndef LMP_FIX_FRICGEN_${LAW_UPPER}_H
+#define LMP_FIX_FRICGEN_${LAW_UPPER}_H
+
+#include "fix.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+// fix ID group fricgen/exact/${law} kT seed [noise yes|no] [calculus ${calculi_list}] [inertia sphere|disc|c] [name value ...]
+// (law parameters: ${parameter_list}; sigma is 1: distances are scaled by R_i + R_k, as in fricgen's engine)
+class ${fix_cls} : public Fix {
+ public:
+  ${fix_cls}(class LAMMPS *, int, char **);
+  ~${fix_cls}() override;
+  int setmask() override;
+  void init() override;
+  void init_list(int, class NeighList *) override;
+  void setup(int) override;
+  void post_force(int) override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  int pack_reverse_comm(int, int, double *) override;
+  void unpack_reverse_comm(int, int *, double *) override;
+
+  struct Pair {
+    tagint lo, hi;    // atom IDs, lo < hi
+    int i, j, c;      // owned atom of ID lo, the neighbour-list copy of hi, its canonical copy
+    int phase, colour;
+  };
+
+ protected:
+  double kT, inertia, reach;
+  bigint seed;
+  int noise_on, calculus;
+  double params[${nparams}];
+  class NeighList *list;
+  std::vector<Pair> pairs;
+  std::vector<uint64_t> used;
+  std::vector<char> touched;
+  void check_domain();
+  void step_pair(const Pair &, uint64_t);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+""")
+
+#: The engine's step, hand-ported: complex numbers as Numba's, mode_step, _propose and the tangents.
+
+
+FIX_SOURCE = Template(
+    r"""#include "fix_fricgen_${law}.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "modify.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+#include "update.h"
+#include "utils.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+namespace {
+
+"""
+    + LAW_CONSTANTS
+    + r"""const int SIGMA_INDEX = ${sigma_index};    // 1: distances scaled by sigma_ik = R_i + R_k (the engine's convention)
+const double WCA_RANGE = 1.122462048309373;    // 2^(1/6)
+// The calculi in fricgen.derive.calculus.Calculus's order, theta of each (contact_step.THETA), which of them the law has.
+const char *const CALCULI[3] = {"ito", "stratonovich", "hk"};
+const double THETAS[3] = {0.0, 0.5, 1.0};
+const bool HAS_CALCULUS[3] = {${has_calculus}};
+
+${support}${ziggurat}
+// --- the law's kernels (derive, verified: ${verified}) -------------------------------------------
+
+${kernels}
+// D of the calculus with index c (CALCULI).
+inline double noise_amplitude(int c, double u, double w, double r, double mu, double kT, const double *params)
+{
+${dispatch}  return NAN;
+}
+${step_code}}    // namespace
+
+${fix_cls}::${fix_cls}(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg), list(nullptr)
+{
+  if (narg < 5) error->all(FLERR, "Illegal fix fricgen/exact/${law} command: give kT and seed");
+  kT = utils::numeric(FLERR, arg[3], false, lmp);
+  seed = utils::bnumeric(FLERR, arg[4], false, lmp);
+  if (!(kT > 0.0)) error->all(FLERR, "fix fricgen/exact/${law}: kT must be > 0, got {}", kT);
+  if (seed < 0) error->all(FLERR, "fix fricgen/exact/${law}: seed must be >= 0, got {}", seed);
+  noise_on = 1;
+  calculus = 0;
+  inertia = 0.4;
+  for (int k = 0; k < NPARAMS; k++) params[k] = DEFAULTS[k];
+  if (SIGMA_INDEX >= 0) params[SIGMA_INDEX] = 1.0;
+  for (int a = 5; a < narg; a += 2) {
+    if (a + 1 >= narg) error->all(FLERR, "fix fricgen/exact/${law}: keyword {} needs a value", arg[a]);
+    const std::string key = arg[a];
+    if (key == "noise") {
+      noise_on = utils::logical(FLERR, arg[a + 1], false, lmp);
+      continue;
+    }
+    if (key == "calculus") {
+      calculus = 0;
+      while (calculus < 3 && std::string(arg[a + 1]) != CALCULI[calculus]) calculus++;
+      if (calculus == 3 || !HAS_CALCULUS[calculus])
+        error->all(FLERR, "fix fricgen/exact/${law}: calculus {} not available; the law has ${calculi_list}", arg[a + 1]);
+      continue;
+    }
+    if (key == "inertia") {
+      const std::string value = arg[a + 1];
+      inertia = value == "sphere" ? 0.4 : value == "disc" ? 0.5 : utils::numeric(FLERR, value, false, lmp);
+      if (!(inertia > 0.0)) error->all(FLERR, "fix fricgen/exact/${law}: inertia must be sphere, disc or a factor > 0");
+      continue;
+    }
+    int k = 0;
+    while (k < NPARAMS && key != PARAMETERS[k]) k++;
+    if (k == NPARAMS || k == SIGMA_INDEX)
+      error->all(FLERR, "fix fricgen/exact/${law}: unknown keyword {} (noise, calculus, inertia or a law parameter: "
+                 "${parameter_list})", key);
+    const double value = utils::numeric(FLERR, arg[a + 1], false, lmp);
+    const double *range = RANGES[k];
+    const bool above = value > range[0] || (range[2] != 0.0 && value == range[0]);
+    const bool below = value < range[1] || (range[3] != 0.0 && value == range[1]);
+    if (!(above && below))
+      error->all(FLERR, "fix fricgen/exact/${law}: {} = {} is outside its range {}{}, {}{}", key, value,
+                 range[2] != 0.0 ? "[" : "(", range[0], range[1], range[3] != 0.0 ? "]" : ")");
+    params[k] = value;
+  }
+  comm_forward = 6;
+  comm_reverse = 7;
+  reach = 0.0;
+}
+
+${fix_cls}::~${fix_cls}() = default;
+
+int ${fix_cls}::setmask()
+{
+  return POST_FORCE;
+}
+
+void ${fix_cls}::init()
+{
+  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag)
+    error->all(FLERR, "fix fricgen/exact/${law} needs radius, per-atom mass and omega: use atom_style sphere");
+  if (domain->triclinic)
+    error->all(FLERR, "fix fricgen/exact/${law}: triclinic boxes are not supported (the phases halve orthogonal sub-domains)");
+  if (atom->map_style == Atom::MAP_NONE)
+    error->all(FLERR, "fix fricgen/exact/${law} needs an atom map: put atom_modify map array before the box is created");
+  if (!comm->ghost_velocity)
+    error->all(FLERR, "fix fricgen/exact/${law} needs the velocities of ghost atoms: use comm_modify vel yes");
+  if (modify->get_fix_by_style("^nve/sphere").empty())
+    error->all(FLERR, "fix fricgen/exact/${law} needs fix nve/sphere: it integrates positions, forces and spins around the contact step");
+  if (force->pair_match("fricgen/${law}", 1))
+    error->all(FLERR, "fix fricgen/exact/${law} and pair_style fricgen/${law} would apply the friction of ${law} twice: "
+               "take lj/cut for WCA with the fix, or the pair style alone");
+  neighbor->add_request(this, NeighConst::REQ_FULL);
+}
+
+void ${fix_cls}::init_list(int, NeighList *ptr)
+{
+  list = ptr;
+}
+
+void ${fix_cls}::setup(int)
+{
+  double largest = 0.0, all;
+  for (int i = 0; i < atom->nlocal; i++) largest = std::max(largest, atom->radius[i]);
+  MPI_Allreduce(&largest, &all, 1, MPI_DOUBLE, MPI_MAX, world);
+  reach = WCA_RANGE * 2.0 * all;
+  if (reach > neighbor->cutneighmax - neighbor->skin)
+    error->all(FLERR, "fix fricgen/exact/${law}: the contacts reach {} (2^(1/6) times the largest diameter), beyond the pair "
+               "cutoff {}: give the pair style a cutoff of at least {}", reach, neighbor->cutneighmax - neighbor->skin, reach);
+  check_domain();
+}
+
+// Each half of a split sub-domain must be wider than two contact reaches and the skin: atoms touched in one
+// phase by two ranks would otherwise meet.
+void ${fix_cls}::check_domain()
+{
+  for (int d = 0; d < domain->dimension; d++) {
+    if (comm->procgrid[d] == 1) continue;
+    const double half = 0.5 * (domain->subhi[d] - domain->sublo[d]);
+    double thinnest;
+    MPI_Allreduce(&half, &thinnest, 1, MPI_DOUBLE, MPI_MIN, world);
+    if (!(thinnest > 2.0 * reach + neighbor->skin))
+      error->all(FLERR, "fix fricgen/exact/${law}: sub-domains too thin along {}: half a sub-domain is {}, the phases need more than "
+                 "2 contact reaches + skin = {}: use fewer ranks along it (processors) or a larger system",
+                 "xyz"[d], thinnest, 2.0 * reach + neighbor->skin);
+  }
+}
+
+// The engine's pairwise step of one pair (contact_step.update_pair) on the canonical copies i and c.
+void ${fix_cls}::step_pair(const Pair &p, uint64_t key)
+{
+  double **x = atom->x, **v = atom->v, **omega = atom->omega;
+  const double *radius = atom->radius, *rmass = atom->rmass;
+  const bool three = domain->dimension == 3;
+  const int i = p.i, k = p.c;
+  const double dx = x[p.j][0] - x[i][0], dy = x[p.j][1] - x[i][1], dz = x[p.j][2] - x[i][2];
+  const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+  const double n[3] = {dx / r, dy / r, dz / r};
+  const double ri = radius[i], rk = radius[k], sigma = ri + rk;
+  const double w = ${weight_call};
+  const double inv_mi = 1.0 / rmass[i], inv_mk = 1.0 / rmass[k];
+  const double inv_ii = 1.0 / (inertia * rmass[i] * (ri * ri)), inv_ik = 1.0 / (inertia * rmass[k] * (rk * rk));
+  const double mu = inv_mi + inv_mk + ri * ri * inv_ii + rk * rk * inv_ik;
+  // u_perp = P (v_k - v_i) - (R_i w_i + R_k w_k) x n (F-4) as x = u_perp . (e1 + i e2): contact_step.contact_mode
+  const double wx = ri * omega[i][0] + rk * omega[k][0], wy = ri * omega[i][1] + rk * omega[k][1];
+  const double wz = ri * omega[i][2] + rk * omega[k][2];
+  const double cx = wy * n[2] - wz * n[1], cy = wz * n[0] - wx * n[2], cz = wx * n[1] - wy * n[0];
+  const double ux = v[k][0] - v[i][0] - cx, uy = v[k][1] - v[i][1] - cy, uz = v[k][2] - v[i][2] - cz;
+  double e1[3], e2[3];
+  tangents(n, three, e1, e2);
+  const Cx xm = {ux * e1[0] + uy * e1[1] + uz * e1[2], ux * e2[0] + uy * e2[1] + uz * e2[2]};
+  const int comps = three ? 2 : 1;
+  const double dt = update->dt;
+  Cx y;
+  if (noise_on) {
+    double rejection;
+    y = propose(xm, w, r, mu, kT, dt, params, pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1),
+                comps, calculus, rejection);
+  } else {
+    y = xm * real(std::exp(-mu * mode_step(xm, w, r, mu, kT, dt, params, comps, calculus).ratio * dt));
+  }
+  if (same(y, xm)) return;
+  const double jp = (xm.re - y.re) / mu, jq = (xm.im - y.im) / mu;    // impulse on i: u_perp -> u_perp - mu J
+  const double jx = jp * e1[0] + jq * e2[0], jy = jp * e1[1] + jq * e2[1], jz = jp * e1[2] + jq * e2[2];
+  const double tx = n[1] * jz - n[2] * jy, ty = n[2] * jx - n[0] * jz, tz = n[0] * jy - n[1] * jx;
+  const int particles[2] = {i, k};
+  const double signs[2] = {1.0, -1.0}, arms[2] = {ri, rk}, inv_m[2] = {inv_mi, inv_mk}, inv_i[2] = {inv_ii, inv_ik};
+  for (int s = 0; s < 2; s++) {
+    const int a = particles[s];
+    const double scale = signs[s] * inv_m[s], turn = arms[s] * inv_i[s];
+    v[a][0] += scale * jx;
+    v[a][1] += scale * jy;
+    v[a][2] += scale * jz;
+    omega[a][0] += turn * tx;
+    omega[a][1] += turn * ty;
+    omega[a][2] += turn * tz;
+  }
+  if (k >= atom->nlocal) touched[k] = 1;
+}
+
+void ${fix_cls}::post_force(int)
+{
+  double **x = atom->x;
+  const double *radius = atom->radius;
+  const tagint *tag = atom->tag;
+  const int *mask = atom->mask;
+  const int nall = atom->nlocal + atom->nghost;
+  const uint64_t key = stream_key(static_cast<uint64_t>(seed), static_cast<uint64_t>(update->ntimestep - 1), CONTACT_STREAM);
+  if (neighbor->ago == 0) check_domain();    // sub-domains change on reneighbouring steps only
+  int split[3] = {0, 0, 0}, phases = 1;
+  for (int d = 0; d < domain->dimension; d++)
+    if (comm->procgrid[d] > 1) {
+      split[d] = phases;
+      phases *= 2;
+    }
+  // the pairs in contact, each once: from the owned atom of lower ID, in the phase of the halves that hold it
+  pairs.clear();
+  const int *ilist = list->ilist, *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = ilist[ii];
+    if (!(mask[i] & groupbit)) continue;
+    int phase = 0;
+    for (int d = 0; d < 3; d++)
+      if (split[d] && x[i][d] >= 0.5 * (domain->sublo[d] + domain->subhi[d])) phase += split[d];
+    for (int jj = 0; jj < numneigh[i]; jj++) {
+      const int j = firstneigh[i][jj] & NEIGHMASK;
+      if (tag[j] <= tag[i] || !(mask[j] & groupbit)) continue;
+      const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
+      const double range = WCA_RANGE * (radius[i] + radius[j]);
+      if (dx * dx + dy * dy + dz * dz >= range * range) continue;
+      pairs.push_back({tag[i], tag[j], i, j, atom->map(tag[j]), phase, 0});
+    }
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const Pair &a, const Pair &b) {
+    return a.phase != b.phase ? a.phase < b.phase : a.lo != b.lo ? a.lo < b.lo : a.hi < b.hi;
+  });
+  // greedy edge colouring in pair order within each phase (contact_step.colour_classes)
+  std::vector<int> degree(nall, 0);
+  int most = 0;
+  for (const Pair &p : pairs) most = std::max(most, std::max(++degree[p.i], ++degree[p.c]));
+  const int words = (2 * most) / 64 + 1;
+  used.assign(static_cast<size_t>(nall) * words, 0);
+  touched.assign(nall, 0);
+  size_t first = 0;
+  while (first < pairs.size()) {
+    size_t last = first;
+    while (last < pairs.size() && pairs[last].phase == pairs[first].phase) last++;
+    for (size_t q = first; q < last; q++) {
+      Pair &p = pairs[q];
+      uint64_t *ui = &used[static_cast<size_t>(p.i) * words], *uc = &used[static_cast<size_t>(p.c) * words];
+      int word = 0;
+      while (~(ui[word] | uc[word]) == 0) word++;
+      const uint64_t free = ~(ui[word] | uc[word]);
+      int bit = 0;
+      while (((free >> bit) & 1ULL) == 0) bit++;
+      ui[word] |= 1ULL << bit;
+      uc[word] |= 1ULL << bit;
+      p.colour = word * 64 + bit;
+    }
+    for (size_t q = first; q < last; q++) {
+      std::fill_n(&used[static_cast<size_t>(pairs[q].i) * words], words, 0);
+      std::fill_n(&used[static_cast<size_t>(pairs[q].c) * words], words, 0);
+    }
+    std::stable_sort(pairs.begin() + first, pairs.begin() + last, [](const Pair &a, const Pair &b) { return a.colour < b.colour; });
+    first = last;
+  }
+  // the phases one after another; the pairs of a phase in colour order
+  size_t q = 0;
+  for (int phase = 0; phase < phases; phase++) {
+    for (; q < pairs.size() && pairs[q].phase == phase; q++) step_pair(pairs[q], key);
+    if (phases == 1) break;
+    comm->reverse_comm(this);    // touched ghost copies to their owners
+    std::fill(touched.begin(), touched.end(), 0);
+    if (phase + 1 < phases) comm->forward_comm(this);    // the owners' velocities and spins to every ghost
+  }
+}
+
+int ${fix_cls}::pack_forward_comm(int n, int *send, double *buf, int, int *)
+{
+  double **v = atom->v, **omega = atom->omega;
+  int m = 0;
+  for (int s = 0; s < n; s++) {
+    const int i = send[s];
+    for (int a = 0; a < 3; a++) buf[m++] = v[i][a];
+    for (int a = 0; a < 3; a++) buf[m++] = omega[i][a];
+  }
+  return m;
+}
+
+void ${fix_cls}::unpack_forward_comm(int n, int first, double *buf)
+{
+  double **v = atom->v, **omega = atom->omega;
+  int m = 0;
+  for (int i = first; i < first + n; i++) {
+    for (int a = 0; a < 3; a++) v[i][a] = buf[m++];
+    for (int a = 0; a < 3; a++) omega[i][a] = buf[m++];
+  }
+}
+
+int ${fix_cls}::pack_reverse_comm(int n, int first, double *buf)
+{
+  double **v = atom->v, **omega = atom->omega;
+  int m = 0;
+  for (int i = first; i < first + n; i++) {
+    buf[m++] = touched[i] ? 1.0 : 0.0;
+    for (int a = 0; a < 3; a++) buf[m++] = v[i][a];
+    for (int a = 0; a < 3; a++) buf[m++] = omega[i][a];
+  }
+  return m;
+}
+
+// A touched copy's velocity and spin replace the receiver's (no other rank touched that atom in the phase).
+void ${fix_cls}::unpack_reverse_comm(int n, int *receive, double *buf)
+{
+  double **v = atom->v, **omega = atom->omega;
+  int m = 0;
+  for (int s = 0; s < n; s++, m += 7) {
+    const int j = receive[s];
+    if (buf[m] == 0.0) continue;
+    for (int a = 0; a < 3; a++) v[j][a] = buf[m + 1 + a];
+    for (int a = 0; a < 3; a++) omega[j][a] = buf[m + 4 + a];
+    touched[j] = 1;
+  }
+}
+"""
+)
