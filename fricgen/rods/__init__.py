@@ -26,7 +26,8 @@ from .comparison import deviations, exact_profile
 from .config import RodConfig, RodModel, RodNumerics, RodSampling, rod_config
 from .interactions import best_exponent, field_energy, field_kernels, pair_kernels, stability_ratio, sticky_force_max
 from .simulation import RodProfiles, RodSimulation, extrapolate_to_zero_dt
-from .theory import HARD_RODS, Neighbours, RodProfile, percus_residual, rod_profile, sticky_residual, sticky_rods, tonks
+from .theory import HARD_RODS, Neighbours, RodProfile, percus_residual, rod_profile, sticky_residual
+from .uniform import sticky_rods, tonks
 
 __all__ = [
     "HARD_RODS",

@@ -18,7 +18,7 @@ and the nearest-neighbour pair density at contact is rho_2(x, x + sigma+) = rho(
 r(x + sigma) / r(x): for hard rods the two-particle density at contact (B-23, B-26). beta P is found
 from rho_bar. The profile solves Percus's functional (B-20b) and, for Baxter's rods, the stationarity
 condition (B-34): ``percus_residual`` and ``sticky_residual`` evaluate both. Uniform limits: Tonks
-(``tonks``) and Baxter's sticky rods (``sticky_rods``). Integrals use linear interpolation on a grid
+(``tonks``) and Baxter's sticky rods (``sticky_rods``), in fricgen.rods.uniform. Integrals use linear interpolation on a grid
 with sigma a whole number of steps h, exp(-beta P r) integrated exactly (error O(h^2), none uniform).
 
 On a ring of length L with a fixed number of rods the profile differs by O(1/L) (canonical versus
@@ -387,34 +387,3 @@ def sticky_residual(
         - sigma / (2 * gamma)
         + grid.window(root, False)
     )
-
-
-def tonks(mean_density: float, sigma: float) -> tuple[float, float]:
-    """βP = ρ̄/(1 − ρ̄σ) and βμ_ch of the uniform hard-rod fluid (Tonks).
-
-    Args:
-        mean_density: ρ̄.
-        sigma: the rod length, ρ̄σ < 1.
-
-    Returns:
-        (βP, βμ_ch): βP in units of ρ̄, βμ_ch dimensionless.
-    """
-    packing = mean_density * sigma
-    return mean_density / (1 - packing), float(np.log(mean_density / (1 - packing)) + packing / (1 - packing))
-
-
-def sticky_rods(mean_density: float, sigma: float, gamma: float) -> tuple[float, float]:
-    """(βP, βμ_ch) of Baxter's uniform sticky rods: βP (1 + γβP) = ρ̄/(1 − ρ̄σ),
-    βμ_ch = βPσ + ln[βP/(1 + γβP)] (isobaric partition function).
-
-    Args:
-        mean_density: ρ̄.
-        sigma: the rod length, ρ̄σ < 1.
-        gamma: the stickiness γ.
-
-    Returns:
-        (βP, βμ_ch): βP in units of ρ̄, βμ_ch dimensionless.
-    """
-    a = mean_density / (1 - mean_density * sigma)
-    pressure = (np.sqrt(1 + 4 * gamma * a) - 1) / (2 * gamma) if gamma > 0 else a
-    return float(pressure), float(pressure * sigma + np.log(pressure / (1 + gamma * pressure)))
