@@ -11,8 +11,9 @@ Public API::
     Simulation(config, particles, state, law).run(20_000, every=100, observers=[Sampler(particles)])
 
 Modules: ``config`` (what to simulate), ``system`` (particles, states, initial configurations,
-walls), ``contact_law`` (a ``[law]`` section's kernels, checked once), ``simulation`` (the run loop), ``integrator``, ``pairs``, ``neighbors`` and ``records``
-(the compiled step), ``analysis`` (T_eff, histograms, KL), ``trajectory`` (GSD, checkpoints); the
+walls), ``contact_law`` (a ``[law]`` section's kernels, checked once), ``simulation`` (the run
+loop), ``integrator``, ``pairs``, ``neighbors`` and ``records`` (the compiled step), ``analysis``
+(T_eff, histograms, KL), ``trajectory`` (GSD, checkpoints); the
 statistical test of a law's thermostat is a study, fricgen.app.thermostat_check. Imports only the
 kernel layer, the RNG, fricgen.schema/errors and fricgen.derive.calculus: never SymPy, the rods
 engine or the application.

@@ -62,6 +62,16 @@ class ContactLaw:
         return self.laws[0]
 
 
+def named_keys(section: Law) -> list[tuple[str, str, str | None]]:
+    """The rows of :data:`LAW_KEYS` whose key names a law in ``section`` (``name`` always), in order."""
+    return [(key, params, mode) for key, params, mode in LAW_KEYS if key == "name" or getattr(section, key) is not None]
+
+
+def law_names(section: Law) -> list[str]:
+    """The names of the laws of ``section``: ``name``, then ``rolling`` and ``spinning`` where given."""
+    return [getattr(section, key) for key, _, _ in named_keys(section)]
+
+
 def bind(section: Law, kernels: LawKernels | Sequence[LawKernels], dim: int) -> ContactLaw:
     """The contact law of the ``[law]`` section ``section`` from the kernels of its laws (``name``, then
     ``rolling`` and ``spinning`` where given, in this order), for ``dim``-D pairs. ConfigError naming
@@ -69,8 +79,7 @@ def bind(section: Law, kernels: LawKernels | Sequence[LawKernels], dim: int) -> 
     two laws on one mode, a mode the pair does not have (spinning in 2-D), a calculus a law lacks or a
     parameter out of its law's range."""
     handed = [kernels] if isinstance(kernels, LawKernels) else list(kernels)
-    named = [(key, params, mode) for key, params, mode in LAW_KEYS if key == "name" or getattr(section, key) is not None]
-    names = [getattr(section, key) for key, _, _ in named]
+    named, names = named_keys(section), law_names(section)
     if [k.name for k in handed] != names:
         if len(names) == len(handed) == 1:
             given = f"is {names[0]!r}, but the kernels handed to the simulation are those of {handed[0].name!r}"
@@ -101,4 +110,4 @@ def bind(section: Law, kernels: LawKernels | Sequence[LawKernels], dim: int) -> 
     return ContactLaw(section.calculus, tuple(found.values()))
 
 
-__all__ = ["ContactLaw", "ModeLaw", "bind"]
+__all__ = ["ContactLaw", "ModeLaw", "bind", "law_names"]

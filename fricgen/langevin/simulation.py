@@ -18,7 +18,7 @@ from ..errors import ConfigError, SimulationError
 from ..kernels import LawKernels, load_potential, no_weight
 from . import integrator
 from .config import LangevinConfig
-from .contact_law import ContactLaw, ModeLaw, bind
+from .contact_law import ContactLaw, ModeLaw, bind, law_names
 from .records import Bodies, Couplings, Dynamics, Motion, NeighborList
 from .system import Particles, State
 from .threads import ThreadChoice
@@ -246,7 +246,7 @@ def _contact_law(config: LangevinConfig, law: object, dim: int) -> ContactLaw:
     """The simulation's contact law: ``law`` as it is when it was resolved for ``config.law`` (the same
     names and calculus), else bound from kernels; TypeError, on one line, for anything else (a name)."""
     if isinstance(law, ContactLaw):
-        names = [config.law.name, *(n for n in (config.law.rolling, config.law.spinning) if n is not None)]
+        names = law_names(config.law)
         if law.names != names or law.calculus != config.law.calculus:
             given = f"the contact law handed to the simulation is {law.names} ({law.calculus}), not {names} ({config.law.calculus})"
             raise ConfigError("law", given, "resolve it for this configuration")

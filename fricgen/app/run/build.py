@@ -20,7 +20,7 @@ from fricgen.derive.law.catalogues import BUILT_IN, CatalogueError, LawSearch
 from ...errors import ConfigError, KernelError
 from ...kernels import load_law_kernels
 from ...langevin.config import Law
-from ...langevin.contact_law import LAW_KEYS, ContactLaw, bind
+from ...langevin.contact_law import ContactLaw, bind, named_keys
 from ...langevin.simulation import Simulation
 from ...langevin.system import (
     Particles,
@@ -48,12 +48,9 @@ def resolve_law(section: Law, dim: int, search: LawSearch = BUILT_IN) -> Contact
         except CatalogueError as error:
             raise ConfigError("law.folder", str(error)) from error
     found = []
-    for key, _, _ in LAW_KEYS:
-        name = getattr(section, key)
-        if name is None:
-            continue
+    for key, _, _ in named_keys(section):
         try:
-            found.append(load_law_kernels(name, search))
+            found.append(load_law_kernels(getattr(section, key), search))
         except KernelError as error:
             raise ConfigError(f"law.{key}", str(error)) from error
     return bind(section, found, dim)
