@@ -41,10 +41,15 @@ class FixFricgenSmoothCoulomb : public Fix {
   int noise_on, calculus;
   double params[4];
   class NeighList *list;
-  std::vector<Pair> pairs;
+  bigint built;                          // neighbor->ncalls when the candidates were collected
+  std::vector<Pair> candidates, pairs;    // the listed pairs in ID order; this step's contacts
+  std::vector<Pair> scratch;
+  std::vector<int> degree, counts;
   std::vector<uint64_t> used;
   std::vector<char> touched;
   void check_domain();
+  void collect_candidates();
+  template <typename Key> void sort_by(size_t, size_t, int, Key);
   void step_pair(const Pair &, uint64_t);
 };
 

@@ -459,6 +459,7 @@ FixFricgenStribeck::FixFricgenStribeck(LAMMPS *lmp, int narg, char **arg) : Fix(
   comm_forward = 6;
   comm_reverse = 7;
   reach = 0.0;
+  built = -1;
 }
 
 FixFricgenStribeck::~FixFricgenStribeck() = default;
@@ -500,7 +501,7 @@ void FixFricgenStribeck::setup(int)
   if (reach > neighbor->cutneighmax - neighbor->skin)
     error->all(FLERR, "fix fricgen/exact/stribeck: the contacts reach {} (2^(1/6) times the largest diameter), beyond the pair "
                "cutoff {}: give the pair style a cutoff of at least {}", reach, neighbor->cutneighmax - neighbor->skin, reach);
-  check_domain();
+  built = -1;    // collect the candidates afresh: setup may have sorted the atoms
 }
 
 // Each half of a split sub-domain must be wider than two contact reaches and the skin: atoms touched in one
@@ -571,50 +572,76 @@ void FixFricgenStribeck::step_pair(const Pair &p, uint64_t key)
   if (k >= atom->nlocal) touched[k] = 1;
 }
 
-void FixFricgenStribeck::post_force(int)
+// On each neighbour-list build (atoms are renumbered only then): every listed pair once, from the owned atom of
+// lower ID, in the engine's pair order (IDs sorted), so that a step only filters the contacts from it.
+void FixFricgenStribeck::collect_candidates()
 {
-  double **x = atom->x;
-  const double *radius = atom->radius;
   const tagint *tag = atom->tag;
   const int *mask = atom->mask;
-  const int nall = atom->nlocal + atom->nghost;
+  const int *ilist = list->ilist, *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  candidates.clear();
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = ilist[ii];
+    if (!(mask[i] & groupbit)) continue;
+    for (int jj = 0; jj < numneigh[i]; jj++) {
+      const int j = firstneigh[i][jj] & NEIGHMASK;
+      if (tag[j] <= tag[i] || !(mask[j] & groupbit)) continue;
+      candidates.push_back({tag[i], tag[j], i, j, atom->map(tag[j]), 0, 0});
+    }
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const Pair &a, const Pair &b) { return a.lo != b.lo ? a.lo < b.lo : a.hi < b.hi; });
+  const size_t nall = static_cast<size_t>(atom->nlocal + atom->nghost);
+  degree.assign(nall, 0);    // degree, used and touched are all zero between steps
+  touched.assign(nall, 0);
+  used.assign(nall, 0);
+  built = neighbor->ncalls;
+  check_domain();    // sub-domains change on neighbour-list builds only
+}
+
+// Stable counting sort of pairs[first, last) by key(pair) < keys, through the scratch buffer.
+template <typename Key> void FixFricgenStribeck::sort_by(size_t first, size_t last, int keys, Key key)
+{
+  counts.assign(keys + 1, 0);
+  for (size_t q = first; q < last; q++) counts[key(pairs[q]) + 1]++;
+  for (int c = 0; c < keys; c++) counts[c + 1] += counts[c];
+  scratch.resize(last - first);
+  for (size_t q = first; q < last; q++) scratch[counts[key(pairs[q])]++] = pairs[q];
+  std::copy(scratch.begin(), scratch.end(), pairs.begin() + first);
+}
+
+void FixFricgenStribeck::post_force(int)
+{
+  if (neighbor->ncalls != built) collect_candidates();
+  double **x = atom->x;
+  const double *radius = atom->radius;
   const uint64_t key = stream_key(static_cast<uint64_t>(seed), static_cast<uint64_t>(update->ntimestep - 1), CONTACT_STREAM);
-  if (neighbor->ago == 0) check_domain();    // sub-domains change on reneighbouring steps only
   int split[3] = {0, 0, 0}, phases = 1;
   for (int d = 0; d < domain->dimension; d++)
     if (comm->procgrid[d] > 1) {
       split[d] = phases;
       phases *= 2;
     }
-  // the pairs in contact, each once: from the owned atom of lower ID, in the phase of the halves that hold it
+  // the pairs in contact in ID order, each in the phase of the halves that hold its owned atom
   pairs.clear();
-  const int *ilist = list->ilist, *numneigh = list->numneigh;
-  int **firstneigh = list->firstneigh;
-  for (int ii = 0; ii < list->inum; ii++) {
-    const int i = ilist[ii];
-    if (!(mask[i] & groupbit)) continue;
-    int phase = 0;
-    for (int d = 0; d < 3; d++)
-      if (split[d] && x[i][d] >= 0.5 * (domain->sublo[d] + domain->subhi[d])) phase += split[d];
-    for (int jj = 0; jj < numneigh[i]; jj++) {
-      const int j = firstneigh[i][jj] & NEIGHMASK;
-      if (tag[j] <= tag[i] || !(mask[j] & groupbit)) continue;
-      const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
-      const double range = WCA_RANGE * (radius[i] + radius[j]);
-      if (dx * dx + dy * dy + dz * dz >= range * range) continue;
-      pairs.push_back({tag[i], tag[j], i, j, atom->map(tag[j]), phase, 0});
-    }
-  }
-  std::sort(pairs.begin(), pairs.end(), [](const Pair &a, const Pair &b) {
-    return a.phase != b.phase ? a.phase < b.phase : a.lo != b.lo ? a.lo < b.lo : a.hi < b.hi;
-  });
-  // greedy edge colouring in pair order within each phase (contact_step.colour_classes)
-  std::vector<int> degree(nall, 0);
   int most = 0;
-  for (const Pair &p : pairs) most = std::max(most, std::max(++degree[p.i], ++degree[p.c]));
+  for (const Pair &candidate : candidates) {
+    const int i = candidate.i, j = candidate.j;
+    const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
+    const double range = WCA_RANGE * (radius[i] + radius[j]);
+    if (dx * dx + dy * dy + dz * dz >= range * range) continue;
+    pairs.push_back(candidate);
+    Pair &p = pairs.back();
+    for (int d = 0; d < 3; d++)
+      if (split[d] && x[i][d] >= 0.5 * (domain->sublo[d] + domain->subhi[d])) p.phase += split[d];
+    most = std::max(most, std::max(++degree[p.i], ++degree[p.c]));
+  }
+  for (const Pair &p : pairs) degree[p.i] = degree[p.c] = 0;
+  if (phases > 1) sort_by(0, pairs.size(), phases, [](const Pair &p) { return p.phase; });
+  // greedy edge colouring in pair order within each phase (contact_step.colour_classes): a pair takes the
+  // lowest colour free at both atoms; fewer than 2 most colours are needed
   const int words = (2 * most) / 64 + 1;
-  used.assign(static_cast<size_t>(nall) * words, 0);
-  touched.assign(nall, 0);
+  if (used.size() < degree.size() * words) used.assign(degree.size() * words, 0);
   size_t first = 0;
   while (first < pairs.size()) {
     size_t last = first;
@@ -624,9 +651,7 @@ void FixFricgenStribeck::post_force(int)
       uint64_t *ui = &used[static_cast<size_t>(p.i) * words], *uc = &used[static_cast<size_t>(p.c) * words];
       int word = 0;
       while (~(ui[word] | uc[word]) == 0) word++;
-      const uint64_t free = ~(ui[word] | uc[word]);
-      int bit = 0;
-      while (((free >> bit) & 1ULL) == 0) bit++;
+      const int bit = __builtin_ctzll(~(ui[word] | uc[word]));
       ui[word] |= 1ULL << bit;
       uc[word] |= 1ULL << bit;
       p.colour = word * 64 + bit;
@@ -635,7 +660,7 @@ void FixFricgenStribeck::post_force(int)
       std::fill_n(&used[static_cast<size_t>(pairs[q].i) * words], words, 0);
       std::fill_n(&used[static_cast<size_t>(pairs[q].c) * words], words, 0);
     }
-    std::stable_sort(pairs.begin() + first, pairs.begin() + last, [](const Pair &a, const Pair &b) { return a.colour < b.colour; });
+    sort_by(first, last, 64 * words, [](const Pair &p) { return p.colour; });
     first = last;
   }
   // the phases one after another; the pairs of a phase in colour order
