@@ -89,8 +89,9 @@ def main() -> None:
         phase_figure(options.figure)
         return
     lammps = locate_lammps()
-    folder = plugin_folder(BUILT_IN.find("coulomb_newton"))
-    plugin = build_plugin(folder, lammps)
+    law_file = BUILT_IN.find("coulomb_newton")
+    folder = plugin_folder(law_file)
+    plugin = build_plugin(folder, lammps, law_file)
     work = Path(tempfile.mkdtemp(prefix="fricgen-bench-"))
     scripts = inputs(folder, work)
     extra = ["-var", "plugin", str(plugin), "-var", "solvent", "0", "-var", "cells", str(options.cells)]

@@ -78,7 +78,8 @@ def main() -> None:
     parser.add_argument("--steps", type=int, default=1000, help="timed steps per measurement")
     options = parser.parse_args()
     lammps = locate_lammps()
-    plugin = build_plugin(plugin_folder(BUILT_IN.find("coulomb_newton")), lammps)
+    law_file = BUILT_IN.find("coulomb_newton")
+    plugin = build_plugin(plugin_folder(law_file), lammps, law_file)
     work = Path(tempfile.mkdtemp(prefix="fricgen-bench-"))
     scripts = {"LAMMPS A": (str(PEERS / "in.A_2d_wca_langevin"), []), "plugin": (plugin_input(work), ["-var", "plugin", str(plugin)])}
     threads = [t for t in (1, 2) if t <= numba.config.NUMBA_NUM_THREADS]

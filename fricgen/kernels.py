@@ -54,7 +54,7 @@ from numba import types
 
 import fricgen.derive.law.manifests as manifests
 from fricgen.derive.law.catalogues import BUILT_IN, LAWS_ENV, CatalogueError, LawSearch, generate_command, is_built_in, kernel_folder
-from fricgen.derive.law.lawdata import POSITIVE, Interval, LawFileError, potential_source_hash, read_law_data, source_hash, weight_potential
+from fricgen.derive.law.lawdata import POSITIVE, Interval, LawFileError, hashed_sources, potential_source_hash, read_law_data, source_hash
 
 from .errors import ConfigError, KernelError
 
@@ -293,7 +293,7 @@ def load_law_kernels(name: str, search: LawSearch = BUILT_IN) -> LawKernels:
 
     def check(found: str | None) -> None:
         if found != digest:
-            changed = str(path) if weight_potential(data) is None else f"{path} or derive/law/potentials.py (its weight {data['weight']})"
+            changed = hashed_sources(path, data)
             raise KernelError(f"the kernels of law {name} are stale: {changed} changed after they were generated; run `{command}`")
 
     if is_built_in(path.parent):

@@ -319,3 +319,10 @@ def source_hash(data: dict, potentials: Path | bytes | None = None) -> str:
         content["weight"] = potential_source_hash(weight, potentials)
     canonical = json.dumps(content, sort_keys=True, separators=(",", ":"), default=repr)  # repr: a TOML date, in an invalid file
     return hashlib.sha256(canonical.encode()).hexdigest()
+
+
+def hashed_sources(path: str | Path, data: dict) -> str:
+    """What a law's source hash covers, for a stale refusal: the law file ``path``, and derive/law/potentials.py
+    when its weight (of ``data``) names a potential."""
+    weight = weight_potential(data)
+    return str(path) if weight is None else f"{path} or derive/law/potentials.py (its weight {weight})"

