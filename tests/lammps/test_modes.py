@@ -1,6 +1,7 @@
 """Rolling and spinning laws in LAMMPS (docs/guide/lammps.md, docs/physics-modes.md): the pair style of a
 law on a mode exerts the couples of the engine's explicit kick, to 1e-12, and combines with a sliding law's
-pair style under pair_style hybrid/overlay.
+pair style under pair_style hybrid/overlay; its fix fricgen/exact/<law> takes the engine's pairwise step of
+the mode, to 1e-12 per step.
 
 Nine spheres of two kinds (radius 0.5, mass 1 and radius 0.4, mass 0.7: unequal radii, R_eff and mu_m) in
 contact: a pair, a triangle across the middle of the box (the boundary between two ranks), a pair across
@@ -27,10 +28,12 @@ from fricgen.derive.backends.lammps_plugin.support_code import support
 from fricgen.derive.driver import generate
 from fricgen.derive.law.catalogues import GENERATED
 from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, State, Thermostat
+from fricgen.langevin.contact_step import contact_step_modes
+from fricgen.langevin.forces import conservative_forces
 from fricgen.langevin.modes import MODE_FIELDS, gather_modes, mode_slots
 from fricgen.langevin.neighbors import build_neighbors
 from fricgen.langevin.pairs import PAIR_FIELDS, TERMS, WCA_RANGE, gather, pair_slots
-from fricgen.langevin.records import Bodies
+from fricgen.langevin.records import Bodies, Motion
 from fricgen.rng import CONTACT, ROLLING, SPINNING, _word, pair_key, stream_key, ziggurat_normal
 
 from .helpers import data_file, dump_lines, read_dump, run, vectors
@@ -312,3 +315,81 @@ def test_the_rolling_laws_3d_template_runs(lammps, laws, tmp_path):
     plugin = laws["rolling_coulomb_newton"][1]
     output = run(lammps, tmp_path, template.replace("plugin index fricgen_rolling_coulomb_newton.so", f"plugin index {plugin}"))
     assert "Loop time" in output and "352 atoms" in output
+
+
+# --- the exact step of a mode law: fix fricgen/exact/<law> -------------------------------------------------
+
+FIX_STEPS = 6
+
+
+def fix_run(lammps, laws, folder, name: str, dim: int, noise: bool, coordinates, kinds):
+    """FIX_STEPS steps of the nine spheres in free flight (pair_style zero) under fix nve/sphere and the fix of the
+    law ``name``, every step dumped."""
+    diameter = np.array([KINDS[k][0] for k in kinds])
+    data_file(folder / "data.spheres", BOX, dim, *coordinates, diameter=diameter, types=kinds + 1)
+    parameters = " ".join(f"{k} {v!r}" for k, v in PARAMETERS[name].items())
+    parameters += f" epsilon {EPSILON!r}" if laws[name][0].has_weight else ""  # the weight's WCA epsilon
+    script = (
+        f"units lj\ndimension {dim}\natom_style sphere\natom_modify map array\nboundary p p p\nread_data data.spheres\n"
+        f"set type 1 mass {KINDS[0][1]!r}\nset type 2 mass {KINDS[1][1]!r}\nplugin load {laws[name][1]}\n"
+        "pair_style zero 1.2\npair_coeff * *\ncomm_modify vel yes\nneighbor 0.3 bin\nneigh_modify every 1 delay 0 check no\n"
+        "fix 1 all nve/sphere\n"
+        + ("fix 3 all enforce2d\n" if dim == 2 else "")
+        + f"fix 2 all fricgen/exact/{name} {KT!r} {SEED} noise {'yes' if noise else 'no'} {parameters}\n"
+        + f"timestep {DT!r}\n"
+        + dump_lines("dump.steps")
+        + f"run {FIX_STEPS}\n"
+    )
+    run(lammps, folder, script)
+    return read_dump(folder / "dump.steps")
+
+
+def engine_mode_steps(laws, name: str, dim: int, noise: bool, snapshots, kinds):
+    """The engine's contact step (contact_step_modes) of each step s from LAMMPS's velocities and spins at s and
+    positions at s + 1: (velocities, spins) after it, by step."""
+    n = len(kinds)
+    radius, mass = np.array([KINDS[k][0] / 2 for k in kinds]), np.array([KINDS[k][1] for k in kinds])
+    particles = Particles(radius, mass, 0.4 * mass * radius * radius, np.ones(n, dtype=bool))
+    bodies = Bodies(particles.radius, particles.inv_mass, particles.inv_inertia)
+    box = np.array([BOX, BOX, BOX if dim == 3 else 0.0])
+    out = {}
+    for s in range(FIX_STEPS):
+        position = np.mod(vectors(snapshots[s + 1], "x", "y", "z"), np.where(box > 0, box, 1.0)) * (box > 0)
+        position[:, 2] = vectors(snapshots[s + 1], "x", "y", "z")[:, 2] if dim == 2 else position[:, 2]
+        velocity, omega = vectors(snapshots[s], "vx", "vy", "vz"), vectors(snapshots[s], "omegax", "omegay", "omegaz")
+        state = State(*(np.ascontiguousarray(a) for a in (position, velocity, omega)), np.tile([1.0, 0.0, 0.0, 0.0], (n, 1)), box, dim)
+        section = Law(name=name, calculus="ito", contact_noise=noise, parameters=PARAMETERS[name])
+        config = LangevinConfig(law=section, thermostat=Thermostat(kT=KT, dt=DT), epsilon=EPSILON, seed=SEED)
+        simulation = Simulation(config, particles, state, [laws[name][0]])
+        dyn, couplings = simulation.dynamics(), simulation.couplings
+        force, contact, slope, weight = simulation.step_kernels()
+        lists = build_neighbors(state.position, dyn.box, dim, WCA_RANGE + 0.3)
+        touching = np.zeros(lists[1].size, dtype=np.bool_)
+        conservative_forces(state.position, bodies, dyn, couplings, force, lists, np.zeros((n, 3)), touching)
+        motion = Motion(state.position, state.velocity, state.omega, state.orientation)
+        keys = tuple(np.uint64(stream_key(SEED, s, stream)) for stream in (CONTACT, ROLLING, SPINNING))
+        contact_step_modes(motion, bodies, dyn, couplings, (contact, slope, weight), simulation.mode_kernels(), lists, touching, keys)
+        out[s + 1] = (state.velocity.copy(), state.omega.copy())
+    return out
+
+
+@pytest.mark.parametrize("noise", [False, True], ids=["friction", "friction+noise"])
+@pytest.mark.parametrize(("name", "dim"), [("rolling_coulomb_newton", 2), ("rolling_coulomb_newton", 3), ("spinning_soft", 3)])
+def test_a_mode_laws_fix_is_the_engines_step(lammps, laws, tmp_path, name, dim, noise):
+    """The fix of a rolling or spinning law (noise tables for spinning_soft): the engine's pairwise step of the mode,
+    velocities untouched and spins to 1e-12 per step, for unequal radii and masses."""
+    kinds, coordinates = spheres(dim)
+    snapshots = fix_run(lammps, laws, tmp_path, name, dim, noise, coordinates, kinds)
+    engine = engine_mode_steps(laws, name, dim, noise, snapshots, kinds)
+    scale = max(np.abs(omega).max() for _, omega in engine.values())
+    first, last = snapshots[0], snapshots[FIX_STEPS]
+    assert np.abs(vectors(last, "omegax", "omegay", "omegaz") - vectors(first, "omegax", "omegay", "omegaz")).max() > 0.01  # it acted
+    for step, (velocity, omega) in engine.items():
+        np.testing.assert_array_equal(vectors(snapshots[step], "vx", "vy", "vz"), velocity)  # untouched in both
+        assert np.abs(vectors(snapshots[step], "omegax", "omegay", "omegaz") - omega).max() < 1e-12 * scale, step
+
+
+def test_a_spinning_laws_fix_is_refused_in_2d(lammps, laws, tmp_path):
+    kinds, coordinates = spheres(2)
+    with pytest.raises(AssertionError, match="fix fricgen/exact/spinning_soft acts on spinning, which does not exist in 2-D"):
+        fix_run(lammps, laws, tmp_path, "spinning_soft", 2, True, coordinates, kinds)

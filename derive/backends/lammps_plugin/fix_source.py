@@ -171,7 +171,7 @@ int ${fix_cls}::setmask()
 
 void ${fix_cls}::init()
 {
-  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag)
+${fix_dimension_check}  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag)
     error->all(FLERR, "fix fricgen/exact/${law} needs radius, per-atom mass and omega: use atom_style sphere");
   if (domain->triclinic)
     error->all(FLERR, "fix fricgen/exact/${law}: triclinic boxes are not supported (the phases halve orthogonal sub-domains)");
@@ -220,58 +220,7 @@ void ${fix_cls}::check_domain()
   }
 }
 
-// The engine's pairwise step of one pair (contact_step.update_pair) on the canonical copies i and c.
-void ${fix_cls}::step_pair(const Pair &p, uint64_t key)
-{
-  double **x = atom->x, **v = atom->v, **omega = atom->omega;
-  const double *radius = atom->radius, *rmass = atom->rmass;
-  const bool three = domain->dimension == 3;
-  const int i = p.i, k = p.c;
-  const double dx = x[p.j][0] - x[i][0], dy = x[p.j][1] - x[i][1], dz = x[p.j][2] - x[i][2];
-  const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-  const double n[3] = {dx / r, dy / r, dz / r};
-  const double ri = radius[i], rk = radius[k], sigma = ri + rk;
-  const double w = ${weight_call};
-  const double inv_mi = 1.0 / rmass[i], inv_mk = 1.0 / rmass[k];
-  const double inv_ii = 1.0 / (inertia * rmass[i] * (ri * ri)), inv_ik = 1.0 / (inertia * rmass[k] * (rk * rk));
-  const double mu = inv_mi + inv_mk + ri * ri * inv_ii + rk * rk * inv_ik;
-  // u_perp = P (v_k - v_i) - (R_i w_i + R_k w_k) x n (F-4) as x = u_perp . (e1 + i e2): contact_step.contact_mode
-  const double wx = ri * omega[i][0] + rk * omega[k][0], wy = ri * omega[i][1] + rk * omega[k][1];
-  const double wz = ri * omega[i][2] + rk * omega[k][2];
-  const double cx = wy * n[2] - wz * n[1], cy = wz * n[0] - wx * n[2], cz = wx * n[1] - wy * n[0];
-  const double ux = v[k][0] - v[i][0] - cx, uy = v[k][1] - v[i][1] - cy, uz = v[k][2] - v[i][2] - cz;
-  double e1[3], e2[3];
-  tangents(n, three, e1, e2);
-  const Cx xm = {ux * e1[0] + uy * e1[1] + uz * e1[2], ux * e2[0] + uy * e2[1] + uz * e2[2]};
-  const int comps = three ? 2 : 1;
-  const double dt = update->dt;
-  Cx y;
-  if (noise_on) {
-    double rejection;
-    y = propose(xm, w, r, mu, kT, dt, params, pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1),
-                comps, calculus, rejection);
-  } else {
-    y = xm * real(std::exp(-mu * mode_step(xm, w, r, mu, kT, dt, params, comps, calculus).ratio * dt));
-  }
-  if (same(y, xm)) return;
-  const double jp = (xm.re - y.re) / mu, jq = (xm.im - y.im) / mu;    // impulse on i: u_perp -> u_perp - mu J
-  const double jx = jp * e1[0] + jq * e2[0], jy = jp * e1[1] + jq * e2[1], jz = jp * e1[2] + jq * e2[2];
-  const double tx = n[1] * jz - n[2] * jy, ty = n[2] * jx - n[0] * jz, tz = n[0] * jy - n[1] * jx;
-  const int particles[2] = {i, k};
-  const double signs[2] = {1.0, -1.0}, arms[2] = {ri, rk}, inv_m[2] = {inv_mi, inv_mk}, inv_i[2] = {inv_ii, inv_ik};
-  for (int s = 0; s < 2; s++) {
-    const int a = particles[s];
-    const double scale = signs[s] * inv_m[s], turn = arms[s] * inv_i[s];
-    v[a][0] += scale * jx;
-    v[a][1] += scale * jy;
-    v[a][2] += scale * jz;
-    omega[a][0] += turn * tx;
-    omega[a][1] += turn * ty;
-    omega[a][2] += turn * tz;
-  }
-  if (k >= atom->nlocal) touched[k] = 1;
-}
-
+${pair_step}
 // On each neighbour-list build (atoms are renumbered only then): every listed pair once, from the owned atom of
 // lower ID, in the engine's pair order (IDs sorted), so that a step only filters the contacts from it.
 void ${fix_cls}::collect_candidates()
@@ -315,7 +264,7 @@ void ${fix_cls}::post_force(int)
   if (neighbor->ncalls != built) collect_candidates();
   double **x = atom->x;
   const double *radius = atom->radius;
-  const uint64_t key = stream_key(static_cast<uint64_t>(seed), static_cast<uint64_t>(update->ntimestep - 1), CONTACT_STREAM);
+  const uint64_t key = stream_key(static_cast<uint64_t>(seed), static_cast<uint64_t>(update->ntimestep - 1), ${stream});
   int split[3] = {0, 0, 0}, phases = 1;
   for (int d = 0; d < domain->dimension; d++)
     if (comm->procgrid[d] > 1) {

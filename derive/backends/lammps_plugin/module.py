@@ -101,7 +101,7 @@ def _source(law: FrictionLaw, model: NoiseModel, fields: dict[str, str]) -> str:
 Ziggurat = tuple[tuple[np.ndarray, np.ndarray, np.ndarray], float]
 
 
-def _style(law: FrictionLaw, fields: dict[str, str], ziggurat: Ziggurat | None, calculi: list[str]) -> dict[str, str]:
+def _style(law: FrictionLaw, fields: dict[str, str], ziggurat: Ziggurat) -> dict[str, str]:
     """What differs between the pair style of a sliding law (WCA + friction + noise, templates.SLIDING_COMPUTE;
     its plugin registers the fix of the ``calculi`` too) and of a rolling or spinning law (couples only, mode_code):
     compute(), the potential, the support code, the plugin's info, the dimension check, and the input templates'
@@ -111,8 +111,6 @@ def _style(law: FrictionLaw, fields: dict[str, str], ziggurat: Ziggurat | None, 
     law_name, calculus = law.name, fields["calculus"]
     if law.mode == "sliding":
         return {
-            **plugin_fields(law_name, calculi),
-            "fix_source": f" fix_fricgen_{law_name}.cpp",
             "compute": SLIDING_COMPUTE.substitute(fields, weight_call=weight_call, pair_loop=PAIR_LOOP),
             "potential": potential_kernels(wca()),
             "support": support(),
@@ -122,8 +120,6 @@ def _style(law: FrictionLaw, fields: dict[str, str], ziggurat: Ziggurat | None, 
             "pair": f"plugin          load ${{plugin}}\npair_style      fricgen/{law_name} ${{kT}} ${{seed}}\n"
             f"pair_coeff      * * 1.0 1.0{parameters}",
         }
-    if ziggurat is None:
-        raise ValueError(f"law {law_name} acts on {law.mode}: its pair style draws the engine's ziggurat normals; give their tables")
     pair = (
         f"plugin          load ${{plugin}}\n"
         f"pair_style      hybrid/overlay lj/cut 1.122462048309373 fricgen/{law_name} ${{kT}} ${{seed}}\n"
@@ -137,10 +133,6 @@ def _style(law: FrictionLaw, fields: dict[str, str], ziggurat: Ziggurat | None, 
     )
     return {
         **mode_fields(law.mode, law_name),
-        "fix_include": "",
-        "fix_creator": "",
-        "fix_registration": "",
-        "fix_source": "",
         "compute": mode_compute(law.mode, fields["cls"], calculus, weight_call),
         "support": support() + ziggurat_support(law.mode, *ziggurat),
         "model": f"WCA (lj/cut, epsilon = kT, sigma = 1) + the {law.mode}\n# friction law {law_name} + its noise ({calculus})",
@@ -248,14 +240,14 @@ def plugin_files(
     model: NoiseModel,
     digest: str,
     source: str,
-    ziggurat: Ziggurat | None = None,
+    ziggurat: Ziggurat,
     fix_models: dict[str, NoiseModel] | None = None,
 ) -> dict[str, str]:
     """The text of every file of the plugin of ``law`` for the verified ``model`` (Itô), by file name;
     ``source`` (it holds the name of a user's folder) printed into the comments by
-    :func:`fricgen.derive.law.catalogues.inert`. A rolling or spinning law's pair style needs ``ziggurat``,
-    the tables of the engine's normals (fricgen.rng), to draw its noise as the engine does, and so does a
-    sliding law's fix, which offers the calculi of ``fix_models`` (verified models by calculus; default ``model``'s)."""
+    :func:`fricgen.derive.law.catalogues.inert`. ``ziggurat`` holds the tables of the engine's normals
+    (fricgen.rng), which the fix (and a rolling or spinning law's pair style) draws as the engine does; the
+    fix offers the calculi of ``fix_models`` (verified models by calculus; default ``model``'s)."""
     calculus = model.calculus.value
     fix_models = fix_models or {calculus: model}
     check_calculus(law, calculus)
@@ -272,7 +264,8 @@ def plugin_files(
     fields = {"law": law.name, "LAW_UPPER": law.name.upper(), "cls": class_name(law.name), "calculus": calculus}
     fields["built_for"] = f"{law.name} {digest}"  # what the plugin's creator checks its class against (templates.PLUGIN)
     fields["parameter_list"] = ", ".join(n for n in names if n not in OWNED) or "none"
-    fields |= _style(law, fields, ziggurat, list(fix_models))
+    fields |= _style(law, fields, ziggurat)
+    fields |= plugin_fields(law.name, list(fix_models)) | {"fix_source": f" fix_fricgen_{law.name}.cpp"}
     files = {
         f"pair_fricgen_{law.name}.h": cxx + HEADER.substitute(fields),
         f"pair_fricgen_{law.name}.cpp": cxx + _source(law, model, fields),
@@ -280,20 +273,17 @@ def plugin_files(
         "lammpsplugin.h": PLUGIN_ABI,
         "CMakeLists.txt": hash_mark + CMAKE.substitute(fields),
     }
-    if law.mode == "sliding":  # the pairwise contact step as a fix (fix_code)
-        if ziggurat is None:
-            raise ValueError(f"law {law.name}: the fix draws the engine's ziggurat normals; give their tables")
-        base = next((m for m in fix_models.values() if not m.closed_form), model)  # with the quadrature's helpers if any D needs them
-        others = [amplitude_kernel(law, m) for m in fix_models.values() if m is not base]
-        kernels = "\n".join([law_kernels(law, base, QUADRATURE_ORDER), *others, slope_kernel(law)])
-        values = fields | _law_values(law, model)
-        for name, text in fix_files(values, kernels, support(), ziggurat_code(*ziggurat), law.weight is not None, list(fix_models)).items():
-            files[name] = cxx + text
+    # the pairwise contact step as a fix (fix_code), drawing the engine's normals of the mode's stream
+    base = next((m for m in fix_models.values() if not m.closed_form), model)  # with the quadrature's helpers if any D needs them
+    others = [amplitude_kernel(law, m) for m in fix_models.values() if m is not base]
+    kernels = "\n".join([law_kernels(law, base, QUADRATURE_ORDER), *others, slope_kernel(law)])
+    normals = ziggurat_code(*ziggurat) if law.mode == "sliding" else ziggurat_support(law.mode, *ziggurat)
+    fix = fix_files(fields | _law_values(law, model), kernels, support(), normals, law.weight is not None, list(fix_models), law.mode)
+    files |= {name: cxx + text for name, text in fix.items()}
     for dim, system in _SYSTEMS.items():
         if law.mode != "spinning" or dim == 3:  # spinning does not exist in 2-D
             files[f"in.{law.name}_{dim}d"] = hash_mark + INPUT.substitute(fields, dim=dim, **system)
-    if law.mode == "sliding":
-        parameters = "".join(f" {p.name} {float(p.default)!r}" for p in law.parameters if p.name not in OWNED)
-        for name, text in exact_inputs(fields, parameters, _SYSTEMS).items():
-            files[name] = hash_mark + text
+    parameters = "".join(f" {p.name} {float(p.default)!r}" for p in law.parameters if p.name not in OWNED)
+    systems = {dim: system for dim, system in _SYSTEMS.items() if law.mode != "spinning" or dim == 3}
+    files |= {name: hash_mark + text for name, text in exact_inputs(fields, parameters, systems, law.mode).items()}
     return files

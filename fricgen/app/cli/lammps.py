@@ -139,11 +139,9 @@ def plugin_texts(law_file: Path, calculus: str = "ito") -> dict[str, str]:
     path, name = law_file, law_file.stem
     law = load_law(path)
     check_calculus(law, calculus)
-    fix = law.mode == "sliding"  # its fix fricgen/exact/<law> takes every calculus of the law
-    derived = law if fix else dataclasses.replace(law, calculi=(calculus,))
-    models, _ = verified_models(derived, emitted=PLUGIN_MODES, backend="LAMMPS plugin")
+    models, _ = verified_models(law, emitted=PLUGIN_MODES, backend="LAMMPS plugin")  # the fix takes every calculus of the law
     source = f"derive/law/catalogue/{name}.toml" if is_built_in(path.parent) else f"{path.parent.name}/{name}.toml"
-    return plugin_files(law, models[calculus], law.source_hash, source, ziggurat(), models if fix else None)
+    return plugin_files(law, models[calculus], law.source_hash, source, ziggurat(), models)
 
 
 def ziggurat() -> tuple[tuple, float]:

@@ -10,12 +10,17 @@
 #include "pair_fricgen_rolling_coulomb_newton.h"
 
 #include <cstring>
+#include "fix_fricgen_rolling_coulomb_newton.h"
 
 using namespace LAMMPS_NS;
 
 static Pair *creator(LAMMPS *lmp)
 {
   return new PairFricgenRollingCoulombNewton(lmp);
+}
+static Fix *fix_creator(LAMMPS *lmp, int argc, char **argv)
+{
+  return new FixFricgenRollingCoulombNewton(lmp, argc, argv);
 }
 
 // Two plugins whose laws' names become one C++ class (fricgen.derive.law.names) would share it: LAMMPS
@@ -36,5 +41,10 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.author = "fricgen code generator";
   plugin.creator.v1 = (lammpsplugin_factory1 *) &creator;
   plugin.handle = handle;
+  (*register_plugin)(&plugin, lmp);
+  plugin.style = "fix";
+  plugin.name = "fricgen/exact/rolling_coulomb_newton";
+  plugin.info = "fricgen: the pairwise contact step of friction law rolling_coulomb_newton (Metropolis-adjusted; calculi ito|stratonovich|hk)";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_creator;
   (*register_plugin)(&plugin, lmp);
 }
