@@ -24,7 +24,9 @@ estimate of the contact density); the same pass checks that no two rods overlap.
 
 Steps 2 and 3 are BCD's own contact layer ("merge", O(sqrt(dt))); the layers "reflect" and "bridge"
 (fricgen.rods.contact, O(dt)) replace them by trial displacements mu F_i dt and a restored hard core,
-selected by Stepping.layer.
+selected by Stepping.layer. Baxter's sticky rods in the limit eps = 0 (Ring.bond = gamma > 0) step by the
+sticky boundary of fricgen.rods.sticky instead: bonded pairs (gaps <= CONTACT_TOLERANCE) are counted in
+gap bin 0.
 
 The physics: docs/physics.md#brownian-cluster-dynamics, docs/physics-bcd-contact-layer.md.
 """
@@ -41,9 +43,10 @@ from ..kernels import FIELD_KERNEL, SCALAR_KERNEL
 from ..rng import BCD, fold_key, stream_key, ziggurat_normal
 from .contact import BRIDGE, MERGE, propagate, tally_local_time
 from .records import COUNTS, RING, STEPPING
+from .sticky import ALL_IN_CONTACT, OK, sticky_step
 
-CONTACT_TOLERANCE = 1e-12  # relative to sigma: gaps below it are contacts
-OK, PASSED, ALL_IN_CONTACT = 0, 1, 2
+CONTACT_TOLERANCE = 1e-12  # relative to sigma: gaps below it are contacts (with the sticky boundary: bonds)
+PASSED = 1  # rods overlapped (the other statuses: fricgen.rods.sticky)
 
 
 @numba.njit(inline="always", cache=True)
@@ -237,9 +240,11 @@ def advance_rods(positions, ring, stepping, external, pair_force, counts):
     ``external`` is the field's force_field(xs, params, out), ``pair_force`` the neighbour force
     f(r, params) on the right rod. counts = (rho_counts, gap_counts): rho_counts[r, b] accumulates
     rods per bin of one wavelength; gap_counts[r, b, k] the left rods of pairs in exact contact
-    (k = 0; with the bridge layer instead their local time at contact, fricgen.rods.contact.tally_local_time)
+    (k = 0; with the bridge layer instead their local time at contact, fricgen.rods.contact.tally_local_time;
+    with the sticky boundary the bonded pairs)
     and with gap r - sigma in [(k - 1) w, k w) (k >= 1), w = gap_width. Returns OK or a
-    failure status (PASSED: rods overlapped; ALL_IN_CONTACT: no gap left on the ring).
+    failure status (PASSED: rods overlapped; ALL_IN_CONTACT: no gap left on the ring; LONG_STEP: a bond's
+    detach probability above 1).
     """
     rho_counts, gap_counts = counts
     length, sigma, mu, dt = ring.length, ring.sigma, ring.mu, stepping.dt
@@ -253,12 +258,15 @@ def advance_rods(positions, ring, stepping, external, pair_force, counts):
         members = np.empty(n, dtype=np.int64)
         stack = np.empty((2 * n + 2, 2), dtype=np.int64)
         heap_t, heap_i = np.empty(3 * n), np.empty(3 * n, dtype=np.int64)  # n, then 2 per merge (< n merges)
-        d, push, candidates, values = np.empty(n), np.empty(n), np.empty(n, dtype=np.int64), np.empty((n, 5))
+        d, drift, push, candidates, values = np.empty(n), np.empty(n), np.empty(n), np.empty(n, dtype=np.int64), np.empty((n, 5))
         bridge = (push, candidates, values, np.full(n, -1, dtype=np.int64), np.empty(n, dtype=np.int64))  # contact.propagate
+        sticky = (np.empty(n), np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64), np.empty(n, dtype=np.bool_), np.empty(n + 1))
         for s in range(stepping.steps):
             key = fold_key(stream_key(stepping.seed, stepping.first_step + s, BCD), r)
             external(x, ring.field_params, forces)
             for i in range(n):
+                if ring.bond > 0.0:
+                    drift[i] = mu * dt * (forces[i] + ring.drive)  # the sticky boundary's drift
                 forces[i] += ring.drive + noise * ziggurat_normal(key, i)
             if ring.pair_on:
                 for i in range(n):
@@ -267,7 +275,12 @@ def advance_rods(positions, ring, stepping, external, pair_force, counts):
                         f = pair_force(gap, ring.pair_params)  # on the right rod, from the left one (B-32)
                         forces[i + 1 if i + 1 < n else 0] += f
                         forces[i] -= f
-            if stepping.layer == MERGE:
+            if ring.bond > 0.0:  # Baxter's limit: the sticky boundary (fricgen.rods.sticky)
+                for i in range(n):
+                    d[i] = mu * forces[i] * dt
+                tolerance = CONTACT_TOLERANCE * sigma
+                status[r] = sticky_step(x, d, drift, length, sigma, 2.0 * ring.diffusion * dt, ring.bond, key, tolerance, sticky)
+            elif stepping.layer == MERGE:
                 status[r] = _step(x, forces, v, length, sigma, mu, dt, (members, stack, prefix), (heap_t, heap_i, when))
             else:  # trial displacements mu F dt, then the hard core by exchanges (fricgen.rods.contact)
                 for i in range(n):

@@ -60,7 +60,7 @@ def _theory(config: RodConfig) -> tuple[Neighbours, int]:
     points = next((m for m in range(600, 2401) if abs(ratio * m - round(ratio * m)) < 1e-9), None)
     if points is None:
         raise ConfigError("model.sigma", f"sigma / lambda = {ratio} is not a fraction k / m with 600 <= m <= 2400", "round sigma")
-    neighbours = Neighbours(c.gamma, c.eps, c.p) if c.gamma > 0 else HARD_RODS
+    neighbours = Neighbours(c.gamma, c.eps or None, c.p) if c.gamma > 0 else HARD_RODS  # eps = 0: Baxter (B-29)
     if c.pair is not None:
         module, params, reach = pair_kernels(c)
         neighbours = Neighbours(pair=on_arrays(module.energy, params), pair_range=reach)

@@ -28,8 +28,9 @@ class RodModel(Section):
     lambda), B-21) of amplitude ``U0`` (kT) and period ``wavelength``, its other parameters from
     ``field_params``; thermal energy ``kT``, mobility ``mu``, a constant ``drive`` (kT / lambda);
     between neighbours either the sticky contact (B-31/32) of stickiness ``gamma`` (0: hard rods),
-    exponent ``p`` and range ``eps``, or the generated pair potential ``pair`` (B-28) with
-    ``pair_params``, zero beyond r = sigma + ``pair_range`` (pair_range < sigma)."""
+    exponent ``p`` and range ``eps`` (eps = 0: Baxter's limit B-29, a sticky boundary of each gap,
+    fricgen.rods.sticky), or the generated pair potential ``pair`` (B-28) with ``pair_params``, zero
+    beyond r = sigma + ``pair_range`` (pair_range < sigma)."""
 
     SECTION = "model"
     n: int = 50
@@ -52,7 +53,14 @@ class RodModel(Section):
     def __post_init__(self):
         self.require(self.n >= 2, "n", f"needs at least 2 rods, got {self.n}", "give n >= 2")
         self.require(self.length > 0 and not math.isnan(self.length), "length", f"must be positive, got {self.length}", "give L > 0")
-        self.require_positive("sigma", "wavelength", "kT", "mu", "eps")
+        self.require_positive("sigma", "wavelength", "kT", "mu")
+        self.require_nonnegative("eps")
+        self.require(
+            self.eps > 0 or (self.gamma > 0 and self.pair is None),
+            "eps",
+            "eps = 0 (Baxter's sticky boundary) needs gamma > 0 and no pair potential",
+            "give gamma > 0, or eps > 0",
+        )
         for name in ("U0", "drive", "gamma", "p", "pair_range"):
             self.require(math.isfinite(getattr(self, name)), name, f"must be finite, got {getattr(self, name)}", "give a number")
         self.require(
@@ -97,6 +105,11 @@ class RodModel(Section):
     def hard_rods(self) -> bool:
         """No interaction beyond the hard core (no sticky contact, no pair potential)."""
         return self.gamma == 0 and self.pair is None
+
+    @property
+    def sticky_boundary(self) -> bool:
+        """Baxter's limit eps = 0 of the sticky contact: a boundary condition of each gap (fricgen.rods.sticky)."""
+        return self.gamma > 0 and self.eps == 0
 
     @property
     def diffusion(self) -> float:
@@ -172,6 +185,12 @@ class RodConfig(Section):
             "numerics.start_sweeps",
             "an open line (length = inf) has no equilibrium to start from",
             "set start_sweeps = 0 and give positions",
+        )
+        self.require(
+            not self.model.sticky_boundary or self.numerics.contact_layer == "bridge",
+            "numerics.contact_layer",
+            f"the sticky boundary (eps = 0) runs with the bridge layer only, got {self.numerics.contact_layer!r}",
+            "give bridge",
         )
         m, r = self.model, self.sampling
         needed = r.replicas * (m.n * BYTES_PER_ROD + r.bins * (r.gap_bins + 1) * BYTES_PER_BIN)

@@ -143,7 +143,7 @@ def stability_ratio(model: RodModel, dt: float) -> float:
     Returns:
         The ratio, dimensionless (0 for hard rods).
     """
-    if model.hard_rods:
+    if model.hard_rods or model.sticky_boundary:  # the boundary (eps = 0) has no force to resolve
         return 0.0
     module, params, reach = pair_kernels(model)
     largest = max(abs(module.force(r, params)) for r in model.sigma + reach * np.linspace(0.0, 1.0, 4001))

@@ -6,7 +6,10 @@ This sampler has the same Boltzmann weight as the exact theory (fricgen.rods.the
 U(x_i) + sum_i V_int(x_{i+1} - x_i))] with the hard core, and moves each rod in turn to a uniform point
 of its free interval (x_{i-1} + sigma, x_{i+1} - sigma): a symmetric proposal accepted with
 probability min(1, exp(-beta Delta E)). Random numbers are counter-based (seed, sweep, replica, rod),
-so a sweep count and seed give a bit-identical start.
+so a sweep count and seed give a bit-identical start. For Baxter's sticky rods (eps = 0, Ring.bond = gamma)
+the proposal is drawn from the reference measure dx + gamma delta(x - left - sigma) + gamma delta(right -
+sigma - x), whose weight relative to the target is still the field's Boltzmann factor: bonds form and
+break exactly at contact.
 
 The sweeps start from rods with Gamma-distributed gaps (``free_rods``), not from a lattice. The ring's
 long-wavelength density modes, with |sum_j exp(2 pi i m x_j / L)|^2 of mean L chi in equilibrium
@@ -115,6 +118,11 @@ def metropolis_sweeps(positions, ring, external, pair, sweeps, first_sweep, seed
                 if free <= 0.0:
                     continue
                 trial = left + sigma + free * uniform(key, 2 * i)
+                if ring.bond > 0.0:  # Baxter: the reference measure dx + gamma (delta at each contact)
+                    share = (free + 2.0 * ring.bond) * uniform(key, 2 * i)
+                    trial = left + sigma + share - 2.0 * ring.bond
+                    if share < 2.0 * ring.bond:
+                        trial = left + sigma if share < ring.bond else right - sigma
                 trial_field = external(trial, ring.field_params)
                 old = _energy(field[i], x[i], left, right, ring, pair)
                 new = _energy(trial_field, trial, left, right, ring, pair)

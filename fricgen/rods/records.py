@@ -14,7 +14,8 @@ _V, _M, _T = types.Array(_F, 1, "C"), types.Array(_F, 2, "C"), types.Array(_F, 3
 class Ring(NamedTuple):
     """The model of one ring: length L (inf: an open line), rod length sigma, mobility mu, thermal
     energy kT, diffusion D = mu kT, constant drive, the field's period lambda and parameters, the
-    neighbour interaction's parameters, its range beyond contact and whether it is on."""
+    neighbour interaction's parameters, its range beyond contact and whether it is on, and Baxter's
+    stickiness gamma of the sticky boundary (eps = 0, fricgen.rods.sticky; 0: none)."""
 
     length: float
     sigma: float
@@ -27,6 +28,7 @@ class Ring(NamedTuple):
     pair_params: np.ndarray
     pair_range: float
     pair_on: bool
+    bond: float = 0.0
 
 
 class Stepping(NamedTuple):
@@ -41,6 +43,6 @@ class Stepping(NamedTuple):
     layer: int = 0
 
 
-RING = types.NamedTuple([_F, _F, _F, _F, _F, _F, _F, _V, _V, _F, _B], Ring)
+RING = types.NamedTuple([_F, _F, _F, _F, _F, _F, _F, _V, _V, _F, _B, _F], Ring)
 STEPPING = types.NamedTuple([_F, _I, _I, _I, _F, _I], Stepping)
 COUNTS = types.Tuple([_M, _T])

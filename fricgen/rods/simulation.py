@@ -35,6 +35,7 @@ from .config import CONTACT_LAYERS, RodConfig
 from .interactions import field_kernels, pair_kernels
 from .records import Ring, Stepping
 from .stability import warn_step
+from .sticky import LONG_STEP
 
 #: Steps per compiled call of :meth:`RodSimulation.advance` (about 0.1 s per replica at N = 50): a
 #: compiled loop cannot be interrupted, so Ctrl-C takes effect between calls. The noise is keyed on
@@ -60,7 +61,8 @@ class RodSimulation:
         self._field, field_params = field_kernels(model)  # energy and force kernels
         self._pair, pair_params, pair_range = pair_kernels(model)
         self.ring = Ring(model.length, model.sigma, model.mu, model.kT, model.diffusion, model.drive, model.wavelength,
-                         field_params, pair_params, pair_range, not model.hard_rods)  # fmt: skip
+                         field_params, pair_params, pair_range, not (model.hard_rods or model.sticky_boundary),
+                         model.gamma if model.sticky_boundary else 0.0)  # fmt: skip
         if positions is None and model.open_line:
             raise ConfigError("positions", "an open line (length = inf) needs initial positions", "give them")
         self.positions = self._initial() if positions is None else self._given(positions)
@@ -121,6 +123,8 @@ class RodSimulation:
                 raise SimulationError(f"rods overlapped near step {self.step + chunk}: a bug or a non-finite force")
             if status == bcd.ALL_IN_CONTACT:
                 raise SimulationError("all rods are in contact (close packing): BCD cannot split the ring")
+            if status == LONG_STEP:
+                raise SimulationError(f"a bond's detach probability per step exceeded 1 near step {self.step + chunk}: reduce dt")
             self.step += chunk
 
     def run(self, steps: int) -> RodProfiles:
@@ -162,6 +166,9 @@ class RodSimulation:
         bins of one ring are correlated (its long-wavelength density fluctuations and the occupation of
         its wells change all of them), so a sum over bins needs the covariance, not the errors alone."""
         c = self.config.sampling
+        if self.config.model.sticky_boundary:  # gap bin 0 holds the bonded pairs: gamma rho_2(x, x + sigma+)
+            bonded = pair_density[:, :, 0] * c.gap_width / self.config.model.gamma
+            return bonded.mean(0), np.atleast_2d(np.cov(bonded, rowvar=False)) / bonded.shape[0]
         if self.config.numerics.contact_layer == "bridge":  # gap bin 0 holds the local time at contact
             local = pair_density[:, :, 0]
             return local.mean(0), np.atleast_2d(np.cov(local, rowvar=False)) / local.shape[0]

@@ -7,6 +7,8 @@ by ``fricgen bcd``, warned about near it (units as in fricgen.rods: lambda = 1, 
   docs/physics-bcd-contact-layer.md).
 * the neighbour force, r_f = mu max|f| dt / a of (B-33), a its range (eps for the sticky contact): beyond
   1 a step jumps across the whole well.
+* the sticky boundary (eps = 0), r_b = sqrt(4 D dt) / gamma: a bond breaks with probability 0.8 r_b per step
+  (fricgen.rods.sticky); from 1 the step is too long for the stickiness (a bond would not last one step).
 * the hard core, r_g = sqrt(4 D dt) / (L / N - sigma): the rms change of a gap per step against the free
   room per rod; beyond 1 every step pushes chains of rods around the ring (a warning only: the contact
   layers keep the hard core at any step).
@@ -37,6 +39,7 @@ class StepRatio(NamedTuple):
     warn: float
     refuse: float
     meaning: str
+    power: float = 1.0  # the ratio grows as dt^power
 
     def text(self) -> str:
         return f"{self.name} = {self.value:.3g} ({self.meaning})"
@@ -53,12 +56,21 @@ def field_ratio(model: RodModel, dt: float) -> float:
 
 
 def step_ratios(model: RodModel, dt: float) -> list[StepRatio]:
-    """The three ratios of the module docstring for ``model`` at time step ``dt``."""
+    """The four ratios of the module docstring for ``model`` at time step ``dt``."""
     free = model.length / model.n - model.sigma if not model.open_line else math.inf
+    spread = math.sqrt(4 * model.diffusion * dt)
     return [
         StepRatio("mu max|U''| dt", field_ratio(model, dt), 0.2, 1.0, "the field's Euler step: at 1 it overshoots a well's bottom"),
         StepRatio("mu max|f| dt / a", stability_ratio(model, dt), 0.1, 1.0, "B-33: at 1 a step crosses the neighbour force's range a"),
-        StepRatio("sqrt(4 D dt) / (L/N - sigma)", math.sqrt(4 * model.diffusion * dt) / free, 1.0, math.inf, "a gap's step over the room"),
+        StepRatio(
+            "sqrt(4 D dt) / gamma",
+            spread / model.gamma if model.sticky_boundary else 0.0,
+            0.5,
+            1.0,
+            "the sticky boundary: at 1 a bond breaks in most steps",
+            0.5,
+        ),  # fmt: skip
+        StepRatio("sqrt(4 D dt) / (L/N - sigma)", spread / free, 1.0, math.inf, "a gap's step over the room", 0.5),
     ]
 
 
@@ -66,7 +78,7 @@ def refuse_step(model: RodModel, dt: float) -> None:
     """ConfigError at numerics.dt if a ratio is at or beyond its limit, naming the largest dt within range."""
     for ratio in step_ratios(model, dt):
         if not ratio.value < ratio.refuse:
-            largest = dt * ratio.refuse / ratio.value if math.isfinite(ratio.value) else 0.0
+            largest = dt * (ratio.refuse / ratio.value) ** (1 / ratio.power) if math.isfinite(ratio.value) else 0.0
             raise ConfigError(
                 "numerics.dt",
                 f"dt = {dt:g} is beyond the scheme's range: {ratio.text()}; nothing was run",

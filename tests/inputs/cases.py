@@ -328,7 +328,10 @@ bcd --gamma -1 | --gamma | must be >= 0
 bcd --gamma nan | --gamma | must be finite
 bcd --gamma 1 --p 1 | --p | need p > 1
 bcd --gamma 1 --p inf | --p | must be finite
-bcd --gamma 1 --eps 0 | --eps | must be positive
+bcd --eps 0 | --eps | needs gamma > 0
+bcd --gamma 1 --eps -0.01 | --eps | must be >= 0
+bcd --gamma 1 --eps 0 --contact-layer merge | --contact-layer | bridge layer only
+bcd --gamma 0.01 --eps 0 | --dt | sqrt(4 D dt) / gamma
 bcd --gamma 1 --eps 0.6 | --eps | below sigma
 bcd --pair-range 0.1 | --pair-range | need a pair potential
 bcd --pair wca --pair-range 0.01 | --pair-range | not zero beyond

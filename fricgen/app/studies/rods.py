@@ -103,7 +103,7 @@ def study(plan: Study, out: Path, force: bool = False) -> dict:
         measured = extrapolate_to_zero_dt(measured, fine, REFINEMENT, config.numerics.error_order)
     seconds = time.perf_counter() - start
     with np.errstate(divide="ignore", invalid="ignore"):
-        compared = deviations(measured, exact, contact=config.model.hard_rods)
+        compared = deviations(measured, exact, contact=config.model.hard_rods or config.model.sticky_boundary)
     if not np.isfinite(compared["chi2_per_dof"]):
         raise ConfigError(
             "--time",
@@ -118,7 +118,7 @@ def study(plan: Study, out: Path, force: bool = False) -> dict:
         "config": config.as_flat(),
     }
     baxter = None
-    if config.model.gamma > 0:  # the delta_eps representation vs Baxter's limit (B-29): an O(eps) difference
+    if config.model.gamma > 0 and not config.model.sticky_boundary:  # the delta_eps representation vs Baxter's limit (B-29)
         baxter = _baxter(config, exact)
         summary["representation_error_max"] = float(np.max(np.abs(exact.rho - baxter.rho)))
     out.mkdir(parents=True, exist_ok=True)
@@ -175,7 +175,7 @@ def _plot(measured: RodProfiles, exact: RodProfile, baxter: RodProfile | None, c
     import matplotlib.pyplot as plt
 
     c, dt = config.model, config.numerics.dt
-    panels = 2 if c.hard_rods else 1
+    panels = 2 if c.hard_rods or c.sticky_boundary else 1
     figure, axes = plt.subplots(1, panels, figsize=(5 * panels, 3.6), squeeze=False)
     title = f"N = {c.n}, L = {c.length:g}, $\\sigma$ = {c.sigma:g}, {c.field} $U_0$ = {c.U0:g}, dt = {dt:g}"
     axis = axes[0, 0]
