@@ -43,9 +43,10 @@ from .errors import DeriveError
 from .law import manifests, potentials
 from .law.catalogues import GENERATED, check_law_files, generate_command, inert, is_built_in, kernel_folder, law_names, source_checkout
 from .law.expressions import time_limit
+from .law.law_files import load_law
 from .law.lawdata import CATALOGUE, NotAFile, read_regular, write_text_atomic
 from .law.lawdata import POTENTIALS as POTENTIALS_SOURCE
-from .law.laws import FrictionLaw, load_law
+from .law.laws import FrictionLaw
 from .law.potentials import EXTERNAL_POTENTIALS, PAIR_POTENTIALS, check_external
 from .noise.contact import ContactReport, prove_contact
 from .noise.derivation import NoiseModel, derive_noise
@@ -71,7 +72,17 @@ class GenerationError(DeriveError, RuntimeError):
 
 @dataclass(frozen=True)
 class Written:
-    """A file the generator wrote, kept or removed."""
+    """A file the generator wrote, kept or removed.
+
+    Attributes
+    ----------
+    path : pathlib.Path
+        The file.
+    status : str
+        "written", "unchanged" or "removed".
+    sha256 : str
+        Of the text written or found (not re-read from the file: what fricgen wrote).
+    """
 
     path: Path
     status: str  # "written", "unchanged" or "removed"
@@ -79,8 +90,26 @@ class Written:
 
 
 def verify(model: NoiseModel) -> Report:
-    """The proof of ``model`` and the accuracy check of its printed Numba kernel, in one report
-    (``kernel_accuracy``, with ``details["kernel_max_rel_error"]``); never raises for a wrong amplitude."""
+    """The proof of a noise model and the accuracy check of its printed Numba kernel, in one report.
+
+    Parameters
+    ----------
+    model : NoiseModel
+        The noise model of one law and calculus.
+
+    Returns
+    -------
+    Report
+        The checks of :func:`prove` and ``kernel_accuracy`` (with ``details["kernel_max_rel_error"]``);
+        never raises for a wrong amplitude.
+
+    Examples
+    --------
+    >>> from fricgen.derive import derive_noise, make_law, verify
+    >>> law = make_law("viscous", "gamma_f*u", parameters={"gamma_f": {"default": 2.0, "unit": "kT t0/sigma^2"}})
+    >>> verify(derive_noise(law, "ito")).verified
+    True
+    """
     start = time.perf_counter()
     proof = prove(model)
     error, where = kernel_accuracy(model, list(proof.reference_points))
@@ -92,8 +121,21 @@ def verify(model: NoiseModel) -> Report:
 
 
 def verify_contact(models: list[NoiseModel], dims: tuple[int, ...] | None = None) -> ContactReport:
-    """The proof of a pair with one law per contact mode (:func:`fricgen.derive.noise.contact.prove_contact`),
-    each law verified with its kernel check (:func:`verify`); ``reason`` says why a combination is refused."""
+    """The proof of a pair with one law per contact mode, each law verified with its kernel check.
+
+    Parameters
+    ----------
+    models : list of NoiseModel
+        One noise model per contact mode (sliding, rolling, spinning), of one calculus.
+    dims : tuple of int, optional
+        The dimensions to prove (2, 3); None: those the modes exist in.
+
+    Returns
+    -------
+    ContactReport
+        The checks (:func:`fricgen.derive.noise.contact.prove_contact`) with each law's :func:`verify`
+        report; its ``reason`` says why a combination is refused.
+    """
     return prove_contact(models, dims, verifier=verify)
 
 
@@ -165,9 +207,29 @@ def stating_mode(text: str, mode: str) -> str:
 def verified_models(
     law: FrictionLaw, seconds: float | None = DERIVATION_TIME_LIMIT, emitted: tuple[str, ...] = EMITTED_MODES, backend: str = "Numba"
 ) -> tuple[dict[str, NoiseModel], list[Report]]:
-    """Derive and verify the law for each of its calculi, each within ``seconds`` (None: no limit);
-    raise GenerationError on any failure, or for a law on a mode that the ``backend`` does not
-    apply (not in ``emitted``)."""
+    """Derive and verify a law for each of its calculi.
+
+    Parameters
+    ----------
+    law : FrictionLaw
+        The law.
+    seconds : float, optional
+        The time limit of each calculus [s]; None: no limit.
+    emitted : tuple of str
+        The contact modes the backend applies.
+    backend : str
+        The backend's name, for the error.
+
+    Returns
+    -------
+    tuple of (dict of str to NoiseModel, list of Report)
+        The models by calculus and their reports.
+
+    Raises
+    ------
+    GenerationError
+        On any failure, or for a law on a mode that the backend does not apply (not in ``emitted``).
+    """
     if law.mode not in emitted:
         raise GenerationError(
             f"law {law.name}: mode {law.mode!r}: the {backend} backend emits no kernels for it (it applies {list(emitted)});"
@@ -188,15 +250,50 @@ def verified_models(
 
 
 def generate(names: list[str] | None = None, catalogue: Path = CATALOGUE, output: Path | None = None) -> tuple[list[Written], list[Report]]:
-    """Derive, verify and emit laws of the catalogue (all by default) and helpers into ``output``, by
-    default the catalogue's kernel folder (the package's generated/, or DIR/generated for a user's law
-    folder DIR); the potentials with the built-in catalogue only.
+    """Derive, verify and emit the kernels of a catalogue's laws (all by default).
 
-    Idempotent: unchanged files are not touched. With ``names`` None, modules of laws no longer
-    in the catalogue are removed. Every law is read, derived and verified before anything is written:
-    a law that is refused or fails leaves the output as it was. The sha256 of every file written or
-    found unchanged is recorded in the user's cache (:mod:`fricgen.derive.law.manifests`; not for the
-    package's own generated/), which the kernel loader checks before it runs any of them.
+    They go into ``output``, by default the catalogue's kernel folder (the package's generated/, or
+    DIR/generated for a user's law folder DIR); the potentials with the built-in catalogue only.
+    Idempotent: unchanged files are not touched. With ``names`` None, modules of laws no longer in the
+    catalogue are removed. Every law is read, derived and verified before anything is written: a law
+    that is refused or fails leaves the output as it was. The sha256 of every file written or found
+    unchanged is recorded in the user's cache (not for the package's own generated/), which the kernel
+    loader checks before it runs any of them (docs/trust-model.md).
+
+    Parameters
+    ----------
+    names : list of str, optional
+        The laws to generate; None: every law of the catalogue.
+    catalogue : pathlib.Path
+        The law folder; the built-in catalogue by default (writable only in a source checkout).
+    output : pathlib.Path, optional
+        Where the kernels go; None: the catalogue's kernel folder.
+
+    Returns
+    -------
+    tuple of (list of Written, list of Report)
+        The files written, kept or removed, and the verification report of each law and calculus.
+
+    Raises
+    ------
+    GenerationError
+        If a law fails its verification; nothing is written then.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import fricgen
+    >>> from fricgen.derive import generate, make_law, save_law
+    >>> folder = Path(tempfile.mkdtemp())
+    >>> law = make_law("viscous", "gamma_f*u", parameters={"gamma_f": {"default": 2.0, "unit": "kT t0/sigma^2"}}, calculi=["ito"])
+    >>> save_law(law, folder).name
+    'viscous.toml'
+    >>> written, reports = generate(["viscous"], catalogue=folder)
+    >>> sorted(w.path.relative_to(folder).as_posix() for w in written)[2], [r.verified for r in reports]
+    ('generated/laws/viscous.py', [True])
+    >>> fricgen.load_law("viscous", folder=folder).calculi
+    ('ito',)
     """
     catalogue, built_in = Path(catalogue), is_built_in(catalogue)
     if built_in and output is None and not source_checkout():

@@ -54,12 +54,27 @@ def clear_stale_caches(root: Path, sources: tuple[str, ...] = COMPILED_SOURCES) 
     edit of ``neighbors.py``, ``integrator.advance`` would run the old code. Does nothing where
     ``root`` is not writable (Numba then caches elsewhere) or for a ``NUMBA_CACHE_DIR``.
 
-    Args:
-        root: the package folder whose ``__pycache__`` folders hold Numba's caches.
-        sources: the compiled sources, relative to ``root`` (default :data:`COMPILED_SOURCES`).
+    Parameters
+    ----------
+    root : pathlib.Path
+        The package folder whose ``__pycache__`` folders hold Numba's caches.
+    sources : tuple of str
+        The compiled sources, relative to ``root`` (default :data:`COMPILED_SOURCES`).
 
-    Returns:
+    Returns
+    -------
+    bool
         Whether the caches were cleared.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from fricgen.compiled import clear_stale_caches
+    >>> root = Path(tempfile.mkdtemp())
+    >>> _ = (root / "engine.py").write_text("x = 1")
+    >>> clear_stale_caches(root, ("engine.py",)), clear_stale_caches(root, ("engine.py",))
+    (True, False)
     """
     digest = hashlib.sha256()
     for name in sources:

@@ -44,19 +44,18 @@ import importlib.util
 import os
 import sys
 from collections.abc import Callable
-from dataclasses import dataclass
 from pathlib import Path
 from types import ModuleType
 
 import numba
-import numpy as np
 from numba import types
 
 import fricgen.derive.law.manifests as manifests
 from fricgen.derive.law.catalogues import BUILT_IN, LAWS_ENV, CatalogueError, LawSearch, generate_command, is_built_in, kernel_folder
-from fricgen.derive.law.lawdata import POSITIVE, Interval, LawFileError, hashed_sources, potential_source_hash, read_law_data, source_hash
+from fricgen.derive.law.lawdata import LawFileError, hashed_sources, potential_source_hash, read_law_data, source_hash
 
-from .errors import ConfigError, KernelError
+from .errors import KernelError
+from .law_kernels import LawKernels
 
 # --- the kernel ABI --------------------------------------------------------------------------------
 
@@ -77,114 +76,21 @@ FIELD_KERNEL = types.FunctionType(types.void(_V, _V, _V))
 
 @numba.njit(SCALAR_KERNEL.signature, cache=True)
 def no_weight(r, params):
-    """w = 1 for laws without a distance weight (friction acts within the potential's range)."""
-    return 1.0
+    """The weight w(r) = 1 of laws without a distance weight (friction acts within the potential's range).
 
+    Parameters
+    ----------
+    r : float
+        Centre distance [sigma] (unused).
+    params : numpy.ndarray
+        The law's parameter array (unused).
 
-# --- law kernels -----------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class LawKernels:
-    """Compiled kernels of one friction law (see the generated module for the equations).
-
-    Kernel arguments: ``(u, w, r, p)`` for ``friction``, ``friction_over_u`` and ``friction_slope``, ``(r, p)`` for
-    ``weight``, ``(u, w, r, mu, kT, p)`` for the noise kernels, with ``p`` from
-    :meth:`parameters`.
+    Returns
+    -------
+    float
+        1.0 [1].
     """
-
-    name: str
-    module: ModuleType
-    #: The law file the kernels were generated from (checked fresh when loaded).
-    path: Path | None = None
-
-    @property
-    def source_hash(self) -> str:
-        """The hash of the law file (and of its weight's potential) that the kernels were generated from."""
-        return self.module.SOURCE_HASH
-
-    @property
-    def parameter_names(self) -> tuple[str, ...]:
-        return self.module.PARAMETERS
-
-    @property
-    def calculi(self) -> tuple[str, ...]:
-        return self.module.CALCULI
-
-    @property
-    def has_weight(self) -> bool:
-        return self.module.HAS_WEIGHT
-
-    @property
-    def mode(self) -> str:
-        """The contact mode the law acts on: ``MODE`` of the module, sliding where it has none (every
-        sliding law's module; docs/physics-modes.md)."""
-        return getattr(self.module, "MODE", "sliding")
-
-    @property
-    def ranges(self) -> dict[str, Interval]:
-        """The admissible values of each parameter (from the law file; the positive reals by default)."""
-        ranges = getattr(self.module, "RANGES", None) or [()] * len(self.parameter_names)  # () : Interval() = POSITIVE
-        return {name: Interval(*bounds) for name, bounds in zip(self.parameter_names, ranges)}
-
-    def parameters(self, **overrides: float) -> np.ndarray:
-        """Parameter values (float64 array) from the defaults and named overrides, each checked against
-        its range (ConfigError naming the parameter and the range otherwise)."""
-        values = dict(zip(self.parameter_names, self.module.DEFAULTS))
-        ranges = self.ranges
-        for key, value in overrides.items():
-            if key not in values:
-                names = list(self.parameter_names)
-                raise ConfigError(f"law.parameters.{key}", f"law {self.name} has no parameter {key!r}", f"it has {names}")
-            allowed = ranges[key]
-            if allowed == POSITIVE and not (np.isfinite(value) and value > 0):
-                raise ConfigError(f"law.parameters.{key}", f"must be positive and finite, got {value}", "give a positive value")
-            if not np.isfinite(value):
-                raise ConfigError(f"law.parameters.{key}", f"must be finite and in {allowed}, got {value}", f"give a value in {allowed}")
-            if value not in allowed:
-                raise ConfigError(
-                    f"law.parameters.{key}",
-                    f"must be in {allowed}, got {value}",
-                    f"give a value in {allowed} (the range law {self.name} declares for {key})",
-                )
-            values[key] = float(value)
-        return np.array([values[n] for n in self.parameter_names], dtype=np.float64)
-
-    def _calculus(self, calculus: str) -> str:
-        if calculus not in self.calculi:
-            raise KernelError(f"law {self.name} has no kernels for the {calculus!r} calculus; it has {list(self.calculi)}")
-        return calculus
-
-    def noise_amplitude(self, calculus: str):
-        """D(u, w, r, mu, kT, p) for the calculus."""
-        return getattr(self.module, f"noise_amplitude_{self._calculus(calculus)}")
-
-    def noise_sqrt(self, calculus: str):
-        """sqrt(D)(u, w, r, mu, kT, p) for the calculus."""
-        return getattr(self.module, f"noise_sqrt_{self._calculus(calculus)}")
-
-    def contact(self, calculus: str):
-        """(f/u, D)(u, w, r, mu, kT, p) for the calculus."""
-        return getattr(self.module, f"contact_{self._calculus(calculus)}")
-
-    @property
-    def friction(self):
-        return self.module.friction
-
-    @property
-    def friction_over_u(self):
-        return self.module.friction_over_u
-
-    @property
-    def friction_slope(self):
-        """df/du(u, w, r, p)."""
-        return self.module.friction_slope
-
-    @property
-    def weight(self):
-        if not self.has_weight:
-            raise KernelError(f"law {self.name} has no weight w(r)")
-        return self.module.weight
+    return 1.0
 
 
 def _import(module_name: str, missing: Callable[[], KernelError], what: str, reload: bool = False) -> ModuleType:
@@ -276,10 +182,33 @@ def _run_verified(module_name: str, folder: Path, file: str, source: bytes) -> M
 
 
 def load_law_kernels(name: str, search: LawSearch = BUILT_IN) -> LawKernels:
-    """Kernels of the law ``name``, from the first catalogue of ``search`` that has it (by default the
-    built-in catalogue alone; ``LawSearch.only(folder)`` for one folder); raises KernelError if the law
-    is unknown, its kernels missing, not written by fricgen on this machine (a user folder's, see
-    :func:`_user_kernels`) or stale."""
+    """The kernels of a law, from the first catalogue of a search that has it.
+
+    Parameters
+    ----------
+    name : str
+        The law's name.
+    search : LawSearch
+        Where to look: the built-in catalogue alone by default; ``LawSearch.only(folder)`` for one
+        user folder, whose kernels run only if fricgen wrote them on this machine (docs/trust-model.md).
+
+    Returns
+    -------
+    LawKernels
+        The law's compiled kernels.
+
+    Raises
+    ------
+    KernelError
+        If the law is unknown, or its kernels missing, untrusted or stale (with the command that
+        regenerates them).
+
+    Examples
+    --------
+    >>> from fricgen.kernels import load_law_kernels
+    >>> load_law_kernels("coulomb").calculi
+    ('ito', 'stratonovich')
+    """
     try:
         path = search.find(name)
         data = read_law_data(path)
@@ -309,15 +238,36 @@ def load_law_kernels(name: str, search: LawSearch = BUILT_IN) -> LawKernels:
 
 
 def load_law(name: str, folder: str | Path | None = None) -> LawKernels:
-    """The compiled kernels of the friction law ``name``, resolved once, to hand to an engine::
+    """The compiled kernels of a friction law, resolved once, to hand to an engine.
 
-        law = fricgen.load_law("stribeck", folder="laws")   # laws/stribeck.toml, kernels in laws/generated/
-        Simulation(config, particles, state, law=law)
+    The notebook's edge of the law search: ``FRICGEN_LAWS`` is read here and nowhere below.
 
-    The notebook's edge of the law search: ``folder`` is the user's law folder that holds LAW.toml
-    (its kernels generated into ``folder/generated/`` by ``fricgen generate --laws folder``); None
-    looks the name up in the folders of ``FRICGEN_LAWS``, then in the built-in catalogue. KernelError
-    if the law is unknown, its kernels missing or stale (with the command that regenerates them)."""
+    Parameters
+    ----------
+    name : str
+        The law's name (``<name>.toml`` in a law folder or the built-in catalogue).
+    folder : str or pathlib.Path, optional
+        The user's law folder that holds ``<name>.toml``, its kernels generated into
+        ``folder/generated/`` by ``fricgen generate --laws folder NAME``. None looks the name up in
+        the folders of ``FRICGEN_LAWS``, then in the built-in catalogue.
+
+    Returns
+    -------
+    LawKernels
+        The law's kernels, e.g. for ``Simulation(config, particles, state, law=law)``.
+
+    Raises
+    ------
+    KernelError
+        If the law is unknown, its kernels missing or stale (with the command that regenerates them).
+
+    Examples
+    --------
+    >>> import fricgen
+    >>> law = fricgen.load_law("stribeck")
+    >>> law.parameter_names[:3], law.mode
+    (('kappa_s', 'kappa_d', 'u_s'), 'sliding')
+    """
     try:
         search = LawSearch.of(folder, named_by="load_law's folder") if folder is not None else LawSearch.parse(os.environ.get(LAWS_ENV, ""))
     except CatalogueError as error:
@@ -326,8 +276,33 @@ def load_law(name: str, folder: str | Path | None = None) -> LawKernels:
 
 
 def load_potential(name: str) -> ModuleType:
-    """Generated potential module (energy(x, params), force(x, params), PARAMETERS, DEFAULTS; external
-    potentials also force_field(xs, params, out)); raises KernelError if missing or stale."""
+    """The generated module of a built-in potential.
+
+    Parameters
+    ----------
+    name : str
+        The potential's name in derive/law/potentials.py (e.g. ``"wca"``).
+
+    Returns
+    -------
+    module
+        With ``energy(x, params)`` [kT] and ``force(x, params)`` [kT/sigma] = -dU/dx, ``PARAMETERS`` and
+        ``DEFAULTS``; an external potential also ``force_field(xs, params, out)``.
+
+    Raises
+    ------
+    KernelError
+        If the potential is unknown, or its kernels missing or stale.
+
+    Examples
+    --------
+    >>> from fricgen.kernels import load_potential
+    >>> wca = load_potential("wca")
+    >>> import numpy as np
+    >>> p = np.array(wca.DEFAULTS)  # epsilon [kT], sigma [sigma]
+    >>> wca.PARAMETERS, wca.force(1.0, p), wca.energy(2.0, p)  # 24 eps/sigma at r = sigma; 0 beyond 2^(1/6) sigma
+    (('epsilon', 'sigma'), 24.0, 0.0)
+    """
     module_name = f"fricgen.generated.potentials.{name}"
 
     def missing():

@@ -149,9 +149,19 @@ class LawSearch:
     the environment. A name is unique on the path: a user law may not take the name of a built-in
     law or of a law in another user folder.
 
-    ``folders``: absolute paths of existing folders (use :meth:`of`, which checks them).
-    ``built_in``: whether the built-in catalogue ends the path (False: the folders alone, as
-    ``load_law_kernels(name, LawSearch.only(folder))``).
+    Attributes
+    ----------
+    folders : tuple of pathlib.Path
+        Absolute paths of existing folders (use :meth:`of`, which checks them).
+    built_in : bool
+        Whether the built-in catalogue ends the path (False: the folders alone, as
+        ``load_law_kernels(name, LawSearch.only(folder))``).
+
+    Examples
+    --------
+    >>> from fricgen.derive.law.catalogues import BUILT_IN
+    >>> BUILT_IN.find("coulomb").name
+    'coulomb.toml'
     """
 
     folders: tuple[Path, ...] = ()
@@ -159,24 +169,76 @@ class LawSearch:
 
     @classmethod
     def of(cls, *folders: str | Path, named_by: str = "") -> LawSearch:
-        """The search of ``folders`` (each checked: CatalogueError saying who named it), then the built-in catalogue."""
+        """The search of some folders, then the built-in catalogue.
+
+        Parameters
+        ----------
+        *folders : str or pathlib.Path
+            The user's law folders, in order; each must exist.
+        named_by : str
+            Who named them, for the error (e.g. "--laws").
+
+        Returns
+        -------
+        LawSearch
+            The search.
+
+        Raises
+        ------
+        CatalogueError
+            For a folder that does not exist, saying who named it.
+        """
         found = (law_folder(folder, named_by) for folder in folders)
         return cls(tuple(folder for folder in dict.fromkeys(found) if folder != _BUILT_IN))
 
     @classmethod
     def parse(cls, text: str, named_by: str = LAWS_ENV) -> LawSearch:
-        """The search of the folders in ``text``, joined by os.pathsep as in ``FRICGEN_LAWS`` (empty
-        entries, and line ends and tabs around an entry, as a shell's ``$(...)`` or an editor leaves
-        them, ignored)."""
+        """The search of the folders of a ``FRICGEN_LAWS``-style text, then the built-in catalogue.
+
+        Parameters
+        ----------
+        text : str
+            Folders joined by os.pathsep; empty entries, and line ends and tabs around an entry (as a
+            shell's ``$(...)`` or an editor leaves them), are ignored.
+        named_by : str
+            Who named them, for the error.
+
+        Returns
+        -------
+        LawSearch
+            The search.
+        """
         return cls.of(*(part.strip("\r\n\t") for part in text.split(os.pathsep) if part.strip()), named_by=named_by)
 
     @classmethod
     def only(cls, catalogue: str | Path) -> LawSearch:
-        """The search of one catalogue folder alone (the built-in catalogue if it is that one)."""
+        """The search of one catalogue folder alone (the built-in catalogue if it is that one).
+
+        Parameters
+        ----------
+        catalogue : str or pathlib.Path
+            The law folder.
+
+        Returns
+        -------
+        LawSearch
+            The search, without the built-in catalogue behind the folder.
+        """
         return cls() if is_built_in(catalogue) else cls((law_folder(catalogue),), built_in=False)
 
     def then(self, other: LawSearch) -> LawSearch:
-        """This search's folders first, then ``other``'s (duplicates dropped)."""
+        """This search's folders first, then another's (duplicates dropped).
+
+        Parameters
+        ----------
+        other : LawSearch
+            The search to append.
+
+        Returns
+        -------
+        LawSearch
+            The joined search.
+        """
         folders = tuple(dict.fromkeys((*self.folders, *other.folders)))
         return LawSearch(folders, self.built_in and other.built_in)
 
@@ -186,8 +248,24 @@ class LawSearch:
         return (*self.folders, CATALOGUE) if self.built_in else self.folders
 
     def find(self, name: str) -> Path:
-        """The law file of ``name``. CatalogueError if no catalogue has it, or two do, or its NAME.toml
-        is not a regular file (a FIFO, a folder, a dangling symbolic link: said as such)."""
+        """The law file of a name.
+
+        Parameters
+        ----------
+        name : str
+            The law's name.
+
+        Returns
+        -------
+        pathlib.Path
+            Its ``<name>.toml``.
+
+        Raises
+        ------
+        CatalogueError
+            If no catalogue has it, or two do, or its ``<name>.toml`` is not a regular file (a FIFO, a
+            folder, a dangling symbolic link: said as such).
+        """
         folders = self.catalogues
         candidates = [folder / f"{name}.toml" for folder in folders if name.isidentifier()]
         for path in candidates:
@@ -219,8 +297,24 @@ class LawSearch:
         return found[0]
 
     def by_catalogue(self, names: Sequence[str] = ()) -> dict[Path, list[str]]:
-        """The named laws, each found on this path, by catalogue. Without names: every law of the user
-        folders, or of the built-in catalogue when there are none (CatalogueError for a clash)."""
+        """The named laws, each found on this path, grouped by catalogue.
+
+        Parameters
+        ----------
+        names : sequence of str
+            The laws; none: every law of the user folders, or of the built-in catalogue when there are
+            none.
+
+        Returns
+        -------
+        dict of pathlib.Path to list of str
+            The law names by catalogue folder.
+
+        Raises
+        ------
+        CatalogueError
+            For an unknown name or a clash.
+        """
         if not names:
             names = [law for folder in self.folders for law in check_law_files(folder)] if self.folders else law_names(CATALOGUE)
         grouped: dict[Path, list[str]] = {}

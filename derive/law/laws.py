@@ -29,11 +29,9 @@ one is left out only with a physical reason (constant friction has f(0+) > 0: th
 from __future__ import annotations
 
 import dataclasses
-import json
 import keyword
 import math
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import mpmath
 import sympy as sp
@@ -41,7 +39,7 @@ import sympy as sp
 from ..calculus import CALCULI
 from . import lawdata, potentials
 from .expressions import CONSTANTS, LawError, check_expression, check_parameter_name, expression_text, parse_expression, snippet, time_limit
-from .lawdata import CATALOGUE, POSITIVE, Interval, LawFileError, check_law_data, parse_range, read_law_data, source_hash, write_text_atomic
+from .lawdata import POSITIVE, Interval, LawFileError, parse_range
 from .ranges import check_ranges
 from .symbols import r, u, w
 
@@ -52,8 +50,21 @@ TAIL_LIMIT_TIME = 20.0
 
 @dataclass(frozen=True)
 class Parameter:
-    """A named parameter with its default value, unit and range of admissible values (an Interval
-    within [0, oo); the positive reals by default)."""
+    """A named parameter of a law with its default, unit and range of admissible values.
+
+    Attributes
+    ----------
+    name : str
+        The parameter's symbol in the friction expression.
+    default : float
+        Its default value, in ``unit``.
+    unit : str
+        Its unit in the model's units, e.g. ``"kT t0/sigma^2"`` or ``"1"`` (dimensionless).
+    description : str
+        One line on its meaning.
+    range : Interval
+        Its admissible values, within [0, oo); the positive reals by default.
+    """
 
     name: str
     default: float
@@ -71,21 +82,38 @@ class Parameter:
 
 @dataclass(frozen=True)
 class FrictionLaw:
-    """Tangential friction magnitude f(u, r) >= 0 with its parameters and distance weight.
+    """A tangential friction law: the magnitude f(u, r) >= 0 [kT/sigma] with its parameters and weight.
 
-    Attributes:
-        name: identifier, also the law file's stem.
-        friction: SymPy expression in ``u``, ``r``, ``w`` and the parameter symbols.
-        parameters: the law's parameters, including those of the weight's potential.
-        weight: w(r) as a SymPy expression in ``r``, or None when ``w`` is not used.
-        weight_source: the weight as written in the law file ("wca" or an expression).
-        calculi: calculi the law supports.
-        mode: the contact mode f acts on, its u the speed of that mode (fricgen.derive.noise.modes).
-        source: the friction expression as written.
-        source_hash: for a law read by :func:`load_law`, the source hash (fricgen.derive.law.lawdata.source_hash)
-            of the very bytes it was built from; generated kernels carry it. Empty otherwise.
-        range_check: how f >= 0, real and finite was established for every parameter value in the
-            ranges: "proven" (symbolically) or "checked numerically" (fricgen.derive.law.ranges).
+    Build one with :func:`make_law` or read one with :func:`load_law`.
+
+    Attributes
+    ----------
+    name : str
+        Identifier, also the law file's stem.
+    friction : sympy.Expr
+        f in ``u`` [sigma/t0], ``r`` [sigma], ``w`` [1] and the parameter symbols.
+    parameters : tuple of Parameter
+        The law's parameters, including those of the weight's potential.
+    weight : sympy.Expr or None
+        w(r) in ``r``, or None when ``w`` is not used.
+    weight_source : str
+        The weight as written in the law file ("wca" or an expression).
+    calculi : tuple of str
+        The calculi the law supports ('ito', 'stratonovich', 'hk').
+    mode : str
+        The contact mode f acts on ('sliding', 'rolling', 'spinning'), u the speed of that mode.
+    description : str
+        One paragraph on the law.
+    reference : str
+        Where the law comes from (a paper, an equation).
+    source : str
+        The friction expression as written.
+    source_hash : str
+        For a law read by :func:`load_law`, the hash of the very bytes it was built from; generated
+        kernels carry it. Empty otherwise.
+    range_check : str
+        How f >= 0, real and finite was established for every parameter value in the ranges:
+        "proven" (symbolically) or "checked numerically".
     """
 
     name: str
@@ -121,18 +149,45 @@ def make_law(
     reference: str = "",
     mode: str = lawdata.DEFAULT_MODE,
 ) -> FrictionLaw:
-    """Build and validate a law; raises :class:`LawError` naming the problem.
+    """Build and validate a friction law.
 
-    Args:
-        name: identifier (ASCII letters, digits, underscores; not starting with an underscore).
-        friction: f as text (parsed as data by :func:`fricgen.derive.law.expressions.parse_expression`, never
-            evaluated) or as a SymPy expression in u, r, w and the parameters.
-        parameters: ``{name: {"default": x, "unit": ..., "description": ..., "range": "[0, 2]"}}``
-            (range as in a law file, or an Interval) or Parameters.
-        weight: None, the name of a potential in :mod:`fricgen.derive.law.potentials` (w = -dU/dr), or an
-            expression in r.
-        calculi: the calculi the law supports.
-        mode: the contact mode the law acts on (fricgen.derive.law.lawdata.CONTACT_MODES).
+    Parameters
+    ----------
+    name : str
+        Identifier (ASCII letters, digits, underscores; not starting with an underscore).
+    friction : str or sympy.Expr
+        f [kT/sigma] as text (parsed as data, never evaluated) or as a SymPy expression in u
+        [sigma/t0], r [sigma], w [1] and the parameters.
+    parameters : dict or tuple of Parameter
+        ``{name: {"default": x, "unit": ..., "description": ..., "range": "[0, 2]"}}`` (range as in a
+        law file, or an Interval), or Parameters.
+    weight : str, optional
+        None, the name of a potential of derive/law/potentials.py (w = -dU/dr), or an expression in r.
+    calculi : sequence of str
+        The calculi the law supports.
+    description : str
+        One paragraph on the law.
+    reference : str
+        Where the law comes from.
+    mode : str
+        The contact mode the law acts on: 'sliding', 'rolling' or 'spinning'.
+
+    Returns
+    -------
+    FrictionLaw
+        The validated law (f >= 0, real and finite over the parameters' ranges).
+
+    Raises
+    ------
+    LawError
+        Naming the problem, e.g. an unknown symbol or an f that can be negative.
+
+    Examples
+    --------
+    >>> from fricgen.derive import make_law
+    >>> law = make_law("viscous", "gamma_f*u", parameters={"gamma_f": {"default": 2.0, "unit": "kT t0/sigma^2"}})
+    >>> law.friction, law.calculi
+    (gamma_f*u, ('ito', 'stratonovich', 'hk'))
     """
     _check_name(name)
     if why := lawdata.mode_refusal(mode):
@@ -319,82 +374,3 @@ def _asymptotic_branch(f: sp.Expr) -> sp.Expr:
 
 
 # --- files ------------------------------------------------------------------------------------
-
-
-def load_law(path: str | Path) -> FrictionLaw:
-    """Read, check and validate a law file (TOML); its ``source_hash`` is that of the bytes read."""
-    path = Path(path)
-    try:
-        data = read_law_data(path)
-        check_law_data(data, path)
-    except LawFileError as error:
-        raise LawError(str(error)) from error
-    if data["name"] != path.stem:
-        raise LawError(f"{path}: name {snippet(repr(data['name']))} must equal the file name {path.stem!r}")
-    digest = source_hash(data, potentials.SOURCE)  # now, not after the derivation: the file may change meanwhile
-    law = make_law(
-        name=data["name"],
-        friction=data["friction"],
-        parameters=data.get("parameters", {}),
-        weight=data.get("weight"),
-        calculi=tuple(data.get("calculi", CALCULI)),
-        description=data.get("description", ""),
-        reference=data.get("reference", ""),
-        mode=data.get("mode", lawdata.DEFAULT_MODE),
-    )
-    return dataclasses.replace(law, source_hash=digest)
-
-
-def _quote(text: str) -> str:
-    """A TOML basic string (JSON escapes, UTF-8 kept as is; DEL is a control character in TOML)."""
-    return json.dumps(text, ensure_ascii=False).replace("\x7f", "\\u007f")
-
-
-def law_text(law: FrictionLaw) -> str:
-    """The law as TOML text (the inverse of :func:`load_law`); weight parameters are implied."""
-    quote = _quote
-    implied = set(potentials.PAIR_POTENTIALS[law.weight_source].defaults) if law.weight_source in potentials.PAIR_POTENTIALS else set()
-    lines = [f"name = {quote(law.name)}"]
-    if law.reference:
-        lines.append(f"reference = {quote(law.reference)}")
-    if law.description:
-        lines.append(f"description = {quote(law.description)}")
-    lines.append(f"friction = {quote(law.source or str(law.friction))}")
-    if law.weight_source:
-        lines.append(f"weight = {quote(law.weight_source)}")
-    lines.append(f"calculi = [{', '.join(quote(c) for c in law.calculi)}]")
-    lines += [f"mode = {quote(law.mode)}"] if law.mode != lawdata.DEFAULT_MODE else []  # a sliding law's text as before
-    for p in law.parameters:
-        if p.name in implied:
-            continue
-        lines += ["", f"[parameters.{p.name}]", f"default = {float(p.default)!r}", f"unit = {quote(p.unit)}"]
-        if p.description:
-            lines.append(f"description = {quote(p.description)}")
-        if p.range != POSITIVE:
-            lines.append(f"range = {quote(str(p.range))}")
-    return "\n".join(lines) + "\n"
-
-
-def save_law(law: FrictionLaw, folder: str | Path = CATALOGUE, overwrite: bool = False) -> Path:
-    """Write the law to ``folder/<name>.toml`` (atomically) and return the path.
-
-    An existing file with other content is replaced only with ``overwrite=True``; one holding
-    exactly this text is left as it is.
-    """
-    path = Path(folder) / f"{law.name}.toml"
-    text = law_text(law)
-    refused = LawError(f"{path} exists and holds another law file: save_law(law, overwrite=True) replaces it")
-    if path.exists() and not overwrite:
-        if path.read_bytes() == text.encode():
-            return path
-        raise refused
-    try:
-        write_text_atomic(path, text, overwrite=overwrite)
-    except FileExistsError:
-        raise refused from None
-    return path
-
-
-def catalogue(folder: str | Path = CATALOGUE) -> dict[str, FrictionLaw]:
-    """All laws in a catalogue folder, by name, in sorted order."""
-    return {p.stem: load_law(p) for p in sorted(Path(folder).glob("*.toml"))}

@@ -40,18 +40,33 @@ from .closed_forms import gaussian_tail_moment, tail
 
 
 def contact_mobility(m_i, m_k, radius_i, radius_k, inertia_i=None, inertia_k=None) -> sp.Expr:
-    """mu = 1/m_i + 1/m_k + R_i^2/I_i + R_k^2/I_k, the contact mobility of a pair (F-21).
+    """The contact mobility of a pair, mu = 1/m_i + 1/m_k + R_i^2/I_i + R_k^2/I_k (F-21).
 
-    Args:
-        m_i, m_k: the masses (numbers or SymPy symbols).
-        radius_i, radius_k: the radii R_i, R_k.
-        inertia_i, inertia_k: the moments of inertia; None: solid spheres, I = 2/5 m R^2.
+    Parameters
+    ----------
+    m_i, m_k : float or sympy.Expr
+        The masses [m].
+    radius_i, radius_k : float or sympy.Expr
+        The radii R_i, R_k [sigma].
+    inertia_i, inertia_k : float or sympy.Expr, optional
+        The moments of inertia [m sigma^2]; None: solid spheres, I = 2/5 m R^2.
 
-    Returns:
-        mu as a SymPy expression, in units of 1/mass (7 for two default spheres, m = 1, R = 1/2).
+    Returns
+    -------
+    sympy.Expr
+        mu [1/m].
 
-    Raises:
-        ValueError: for non-positive masses, radii or moments of inertia.
+    Raises
+    ------
+    ValueError
+        For non-positive masses, radii or moments of inertia.
+
+    Examples
+    --------
+    >>> from sympy import Rational
+    >>> from fricgen.derive import contact_mobility
+    >>> contact_mobility(1, 1, Rational(1, 2), Rational(1, 2))  # two default spheres
+    7
     """
     m_i, m_k, radius_i, radius_k = (sp.nsimplify(sp.sympify(v)) for v in (m_i, m_k, radius_i, radius_k))
     inertia_i = sp.Rational(2, 5) * m_i * radius_i**2 if inertia_i is None else sp.nsimplify(sp.sympify(inertia_i))
@@ -65,18 +80,29 @@ def contact_mobility(m_i, m_k, radius_i, radius_k, inertia_i=None, inertia_k=Non
 
 @dataclass(frozen=True)
 class NoiseModel:
-    """The noise amplitude D(u, w, r) of a law for one calculus.
+    """The noise amplitude D(u, w, r) [kT t0/sigma^2] of a law for one calculus.
 
-    Attributes:
-        law: the friction law.
-        calculus: the calculus D was derived for.
-        amplitude: D as a SymPy expression (Piecewise for branched laws); in integral form it
-            contains an unevaluated ``Integral`` over ``s`` from u to oo.
-        closed_form: False when ``amplitude`` is the integral representation (F-22).
-        mobility: the contact mobility mu (a symbol or an expression of particle properties).
-        reason: for the integral form, why no closed form was found (a branch of f that is no
-            exponential polynomial in u, or branches SymPy cannot decide); D then keeps the integral (F-22),
-            evaluated by quadrature. Empty for a closed form.
+    It solves the zero-current condition nu kT dD/du - u D = -f with nu = (1 - theta) mu (F-20); for
+    nu != 0 the decaying solution D = (1/(kT nu)) int_u^oo f(s) exp(-(s^2 - u^2)/(2 kT nu)) ds (F-22),
+    for HK (nu = 0) D = f/u.
+
+    Attributes
+    ----------
+    law : FrictionLaw
+        The friction law.
+    calculus : Calculus
+        The calculus D was derived for.
+    amplitude : sympy.Expr
+        D (Piecewise for branched laws); in integral form it contains an unevaluated ``Integral``
+        over ``s`` from u to oo.
+    closed_form : bool
+        False when ``amplitude`` is the integral representation (F-22).
+    mobility : sympy.Expr
+        The contact mobility mu [1/m] (a symbol or an expression of particle properties).
+    reason : str
+        For the integral form, why no closed form was found (a branch of f that is no exponential
+        polynomial in u, or branches SymPy cannot decide); D then keeps the integral, evaluated by
+        quadrature. Empty for a closed form.
     """
 
     law: FrictionLaw
@@ -98,13 +124,35 @@ class NoiseModel:
 
 
 def derive_noise(law: FrictionLaw, calculus: Calculus | str, mobility: sp.Expr | float | None = None) -> NoiseModel:
-    """Derive D(u, w, r) for ``law`` in ``calculus``; closed form when one is found.
+    """Derive the noise amplitude D(u, w, r) [kT t0/sigma^2] of a law for a calculus.
 
-    Args:
-        law: a validated friction law.
-        calculus: "ito", "stratonovich" or "hk".
-        mobility: contact mobility mu; the symbol ``mu`` by default, or a positive number or
-            expression (see :func:`contact_mobility`).
+    D solves nu kT dD/du - u D = -f with nu = (1 - theta) mu (F-20): theta = 0 Ito, 1/2 Stratonovich,
+    1 HK (D = f/u). In closed form where one is found, else as the integral (F-22).
+
+    Parameters
+    ----------
+    law : FrictionLaw
+        A validated friction law.
+    calculus : str or Calculus
+        "ito", "stratonovich" or "hk".
+    mobility : sympy.Expr or float, optional
+        The contact mobility mu [1/m]; the symbol ``mu`` by default, or a positive number or
+        expression (:func:`contact_mobility`).
+
+    Returns
+    -------
+    NoiseModel
+        D with how it was found.
+
+    Examples
+    --------
+    >>> from fricgen.derive import derive_noise, make_law
+    >>> law = make_law("viscous", "gamma_f*u", parameters={"gamma_f": {"default": 2.0, "unit": "kT t0/sigma^2"}})
+    >>> derive_noise(law, "ito").amplitude  # linear friction: D = gamma_f in every calculus (F-29)
+    gamma_f
+    >>> coulomb = make_law("constant", "w*kappa", parameters={"kappa": {"default": 1.0, "unit": "kT/sigma"}}, weight="wca")
+    >>> derive_noise(coulomb, "hk").amplitude  # HK: D = f/u (F-23)
+    kappa*w/u
     """
     calculus = Calculus(calculus)
     mobility = mu if mobility is None else sp.nsimplify(sp.sympify(mobility))

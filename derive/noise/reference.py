@@ -37,12 +37,37 @@ QUAD_DIGITS = 20
 
 
 def reference_amplitude(model: NoiseModel, a: sp.Expr, values: dict) -> callable:
-    """D as a function of u (mpmath, at the working precision of the caller), all other symbols
-    given in ``values``: the closed form, or (F-22) with a = ``a`` by mpmath.quad.
+    """D(u) [kT t0/sigma^2] at high precision, as a reference: the closed form, or the integral (F-22)
+    D = (1/a) int_u^oo f(s) exp(-(s^2 - u^2)/(2a)) ds with a = kT nu by mpmath.quad.
 
     Float values enter as the exact rationals of their binary values: a Float substituted into
     SymPy would round products such as 1/(2a) to 15 digits, and exp(u^2/2a) at u = 1e3 sqrt(a)
-    amplifies that to a relative error of 1e-10."""
+    amplifies that to a relative error of 1e-10.
+
+    Parameters
+    ----------
+    model : NoiseModel
+        The noise model (:func:`fricgen.derive.derive_noise`).
+    a : sympy.Expr
+        The velocity variance scale a = kT nu [sigma^2/t0^2], ``model.variance_scale``.
+    values : dict
+        The value of every other symbol (parameters, ``w``, ``r``, ``kT``, ``mu``), by SymPy symbol.
+
+    Returns
+    -------
+    callable
+        D(u) for u [sigma/t0], with mpmath numbers at the working precision of the caller.
+
+    Examples
+    --------
+    >>> from fricgen.derive import derive_noise, kT, make_law, mu, reference_amplitude, w
+    >>> law = make_law("constant", "w*kappa", parameters={"kappa": {"default": 1.0, "unit": "kT/sigma"}}, weight="wca")
+    >>> model = derive_noise(law, "ito")
+    >>> values = {kT: 1.0, mu: 2.0, w: 1.0, **{p.symbol: p.default for p in law.parameters}}
+    >>> D = reference_amplitude(model, model.variance_scale, values)
+    >>> print(f"{float(D(0.0)):.6f}")  # D(0) = w kappa sqrt(pi / (2 kT mu)) (F-31)
+    0.886227
+    """
     values = {k: sp.Rational(v) if isinstance(v, float) else v for k, v in values.items()}
     if model.closed_form:
         return sp.lambdify(u, model.amplitude.subs(values), modules="mpmath")

@@ -52,7 +52,27 @@ SAMPLE_WEIGHTS = (0.05, 1.0, 60.0)
 
 @dataclass(frozen=True)
 class Report:
-    """Verification report of one model: named checks, details, timing."""
+    """The verification report of one noise model: named checks, details, timing.
+
+    Attributes
+    ----------
+    law : str
+        The law's name.
+    calculus : str
+        The calculus of the model.
+    closed_form : bool
+        Whether D is in closed form.
+    checks : dict of str to bool
+        Each check by name (the ODE residual, zero current in 3-D and 2-D, the covariance, the
+        boundary condition, D >= 0 and finite, ...): True where it passed.
+    details : dict of str to str
+        What a check found, for the report.
+    seconds : float
+        The wall time of the verification [s].
+    reference_points : tuple
+        The reference values of D that the proof checked for sign and finiteness; the backends check
+        their printed kernels against the same values (:func:`verify`).
+    """
 
     law: str
     calculus: str
@@ -60,8 +80,6 @@ class Report:
     checks: dict[str, bool]
     details: dict[str, str] = field(default_factory=dict)
     seconds: float = 0.0
-    #: The reference values of D that the proof checked for sign and finiteness; the backends check
-    #: their printed kernels against the same values (fricgen.derive.driver.verify).
     reference_points: tuple[Point, ...] = field(default=(), repr=False, compare=False)
 
     @property
@@ -69,6 +87,13 @@ class Report:
         return all(self.checks.values())
 
     def as_dict(self) -> dict:
+        """The report as plain data (the JSON of ``fricgen verify --json``).
+
+        Returns
+        -------
+        dict
+            law, calculus, closed_form, verified, checks, details and seconds.
+        """
         return {
             "law": self.law,
             "calculus": self.calculus,
@@ -81,16 +106,21 @@ class Report:
 
 
 def prove(model: NoiseModel) -> Report:
-    """The symbolic facts of a noise model: the ODE residual (F-20), zero current on the pair phase
-    space in 3-D and 2-D, the noise covariance (F-50), the boundary condition (F-22), D ≥ 0 and
-    finite. No printed code is checked here (see :func:`fricgen.derive.driver.verify`).
+    """The symbolic facts of a noise model.
 
-    Args:
-        model: the noise model of one law and calculus (:func:`fricgen.derive.derive_noise`).
+    The ODE residual f - u D + nu kT dD/du = 0 (F-20), zero current on the pair phase space in 3-D and
+    2-D, the noise covariance (F-50), the boundary condition (F-22), D >= 0 and finite. No printed code
+    is checked here (see :func:`fricgen.derive.verify`).
 
-    Returns:
-        The report: one boolean per check, details, seconds. A wrong amplitude is reported there,
-        never raised.
+    Parameters
+    ----------
+    model : NoiseModel
+        The noise model of one law and calculus (:func:`fricgen.derive.derive_noise`).
+
+    Returns
+    -------
+    Report
+        One boolean per check, details, seconds. A wrong amplitude is reported there, never raised.
     """
     start = time.perf_counter()
     checks: dict[str, bool] = {}

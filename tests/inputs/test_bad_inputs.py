@@ -33,7 +33,7 @@ def trap(monkeypatch):
         "fricgen.derive.driver": {"generate": stop, "verify": stop, "GENERATED": Path("generated")},
         "fricgen.derive.noise.derivation": {"derive_noise": stop},
         "fricgen.derive.noise.verification": {"prove": stop},
-        "fricgen.derive.law.laws": {"catalogue": stop, "load_law": stop},
+        "fricgen.derive.law.law_files": {"catalogue": stop, "load_law": stop},
     }
     for name, attributes in fakes.items():
         monkeypatch.setitem(sys.modules, name, types.SimpleNamespace(**attributes))

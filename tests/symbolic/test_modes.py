@@ -8,8 +8,9 @@ import sympy as sp
 
 from fricgen.derive import derive_noise, driver, load_law, make_law, verify
 from fricgen.derive.calculus import Calculus
+from fricgen.derive.law.law_files import law_text
 from fricgen.derive.law.lawdata import CONTACT_MODES, ModeError, mode_refusal
-from fricgen.derive.law.laws import LawError, law_text
+from fricgen.derive.law.laws import LawError
 from fricgen.derive.noise import lemma_cache, mode_proofs, modes
 from fricgen.derive.noise.contact import coupling, prove_contact
 from fricgen.derive.noise.phase_space import pair_phase_space

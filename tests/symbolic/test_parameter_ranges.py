@@ -10,8 +10,9 @@ import sympy as sp
 
 import fricgen.derive.law.ranges
 from fricgen.derive import LawError, load_law, make_law, save_law
+from fricgen.derive.law.law_files import law_text
 from fricgen.derive.law.lawdata import POSITIVE, Interval, LawFileError, parse_range
-from fricgen.derive.law.laws import Parameter, law_text
+from fricgen.derive.law.laws import Parameter
 from fricgen.derive.law.ranges import CHECKED_NUMERICALLY, PROVEN, range_values
 
 #: The velocity-weakening law with ranges that keep f >= 0 (kappa_d <= 2 <= kappa_s); not in the catalogue.

@@ -134,7 +134,7 @@ def plugin_texts(law_file: Path, calculus: str = "ito") -> dict[str, str]:
     from fricgen.derive.backends.lammps_plugin.module import check_calculus, plugin_files
     from fricgen.derive.driver import PLUGIN_MODES, verified_models
     from fricgen.derive.law.catalogues import is_built_in
-    from fricgen.derive.law.laws import load_law
+    from fricgen.derive.law.law_files import load_law
 
     path, name = law_file, law_file.stem
     law = load_law(path)
