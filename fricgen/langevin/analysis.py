@@ -21,12 +21,17 @@ def scaled_components(state: State, particles: Particles) -> tuple[np.ndarray, n
     """√m v and √I ω of the mobile particles, one column per degree of freedom (2-D: v_x, v_y and
     ω_z; 3-D: three each); each has variance kT at equilibrium.
 
-    Args:
-        state: the state.
-        particles: masses and moments of inertia, and which particles are mobile.
+    Parameters
+    ----------
+    state : State
+        The state.
+    particles : Particles
+        Masses and moments of inertia, and which particles are mobile.
 
-    Returns:
-        (√m v, √I ω), each of shape (mobile particles, degrees of freedom), in √(energy).
+    Returns
+    -------
+    tuple[np.ndarray, np.ndarray]
+        (√m v, √I ω), each of shape (mobile particles, degrees of freedom) [sqrt(kT)].
     """
     mobile = particles.mobile
     spin_axes = slice(2, 3) if state.dim == 2 else slice(0, 3)
@@ -39,12 +44,17 @@ def temperatures(state: State, particles: Particles) -> tuple[float, float]:
     """Instantaneous kinetic temperatures of translation and rotation of the mobile particles,
     T_trans = ⟨m v_a²⟩ and T_rot = ⟨I ω_a²⟩ over their degrees of freedom.
 
-    Args:
-        state: the state.
-        particles: masses and moments of inertia, and which particles are mobile.
+    Parameters
+    ----------
+    state : State
+        The state.
+    particles : Particles
+        Masses and moments of inertia, and which particles are mobile.
 
-    Returns:
-        (T_trans, T_rot), in energy units (kT = 1).
+    Returns
+    -------
+    tuple[float, float]
+        (T_trans, T_rot) [kT].
     """
     velocities, spins = scaled_components(state, particles)
     return float(np.mean(velocities**2)), float(np.mean(spins**2))
@@ -54,13 +64,19 @@ def velocity_profile(state: State, particles: Particles, bins: int) -> tuple[np.
     """Mean v_x and ω_z of the mobile particles in ``bins`` equal slabs along y (slab j spans
     [j, j + 1) L_y / bins): the flow and spin profiles of a slit.
 
-    Args:
-        state: the state.
-        particles: which particles are mobile.
-        bins: the number of slabs.
+    Parameters
+    ----------
+    state : State
+        The state.
+    particles : Particles
+        Which particles are mobile.
+    bins : int
+        The number of slabs.
 
-    Returns:
-        (v_x, ω_z) per slab, in σ/t0 and 1/t0; NaN where a slab is empty.
+    Returns
+    -------
+    tuple[np.ndarray, np.ndarray]
+        (v_x, ω_z) per slab [sigma/t0] and [1/t0]; NaN where a slab is empty.
     """
     mobile = particles.mobile
     slab = np.minimum((state.position[mobile, 1] / state.box[1] * bins).astype(int), bins - 1)
@@ -73,7 +89,17 @@ def velocity_profile(state: State, particles: Particles, bins: int) -> tuple[np.
 
 @dataclass(frozen=True)
 class Estimate:
-    """A mean with its standard error from block averages."""
+    """A mean with its standard error from block averages (:func:`block_estimate`).
+
+    Attributes
+    ----------
+    mean : float
+        The mean, in the series' units.
+    error : float
+        Its standard error, in the same units.
+    blocks : int
+        The number of blocks.
+    """
 
     mean: float
     error: float
@@ -86,15 +112,22 @@ def block_estimate(series: np.ndarray, blocks: int = 20) -> Estimate:
     The error is the standard deviation of the block means over √blocks, which counts the series'
     correlations as long as a block is longer than its correlation time.
 
-    Args:
-        series: the samples, in time order (a trailing remainder shorter than a block is dropped).
-        blocks: the number of blocks.
+    Parameters
+    ----------
+    series : np.ndarray
+        The samples, in time order (a trailing remainder shorter than a block is dropped).
+    blocks : int
+        The number of blocks.
 
-    Returns:
+    Returns
+    -------
+    Estimate
         The mean, its standard error and the number of blocks.
 
-    Raises:
-        ValueError: for fewer than 2·blocks samples.
+    Raises
+    ------
+    ValueError
+        For fewer than 2·blocks samples.
     """
     series = np.asarray(series, dtype=float)
     if series.size < 2 * blocks:
@@ -111,13 +144,19 @@ def kl_divergence(samples: np.ndarray, bins: int = 41, span: float = 4.0) -> flo
     compared with the Gaussian's exact bin probabilities. The plug-in estimate has a positive bias
     of about (bins - 1) / (2 n) for n independent samples.
 
-    Args:
-        samples: zero-mean samples, e.g. √m v components.
-        bins: the number of histogram bins.
-        span: the half width of the histogram, in fitted standard deviations.
+    Parameters
+    ----------
+    samples : np.ndarray
+        Zero-mean samples, e.g. √m v components.
+    bins : int
+        The number of histogram bins.
+    span : float
+        The half width of the histogram, in fitted standard deviations.
 
-    Returns:
-        The divergence, dimensionless (0 for a perfect Gaussian).
+    Returns
+    -------
+    float
+        The divergence [1] (0 for a perfect Gaussian).
     """
     x = np.asarray(samples, dtype=float).ravel()
     x = x / math.sqrt(np.mean(x**2))
@@ -135,19 +174,33 @@ def kl_divergence(samples: np.ndarray, bins: int = 41, span: float = 4.0) -> flo
 def maxwell_boltzmann(x: np.ndarray, mass: float, kT: float) -> np.ndarray:
     """Density of one velocity component, √(m / 2πkT) exp(−m x² / 2kT).
 
-    Args:
-        x: velocity values, in σ/t0.
-        mass: the mass m.
-        kT: the temperature, in energy units.
+    Parameters
+    ----------
+    x : np.ndarray
+        Velocity values [sigma/t0].
+    mass : float
+        The mass m [m].
+    kT : float
+        The temperature [kT].
 
-    Returns:
-        The probability density at each x, in t0/σ.
+    Returns
+    -------
+    np.ndarray
+        The probability density at each x [t0/sigma].
     """
     return np.sqrt(mass / (2 * np.pi * kT)) * np.exp(-mass * x**2 / (2 * kT))
 
 
 class Sampler:
-    """An observer for Simulation.run: records temperatures and velocity components per frame."""
+    """An observer for :meth:`Simulation.run`: records temperatures and velocity components per frame.
+
+    Parameters
+    ----------
+    particles : Particles
+        The particles (masses, moments of inertia, which are mobile).
+    keep_samples : int
+        How many scaled velocity components to keep at most (the temperatures are kept for every frame).
+    """
 
     def __init__(self, particles: Particles, keep_samples: int = 200_000):
         self.particles = particles
@@ -166,9 +219,21 @@ class Sampler:
             self.spins.append(spins.ravel())
 
     def scaled_velocities(self) -> np.ndarray:
-        """sqrt(m) v components (variance kT at equilibrium)."""
+        """The recorded sqrt(m) v components.
+
+        Returns
+        -------
+        numpy.ndarray
+            One flat array [sqrt(kT)]; variance kT at equilibrium.
+        """
         return np.concatenate(self.velocities)
 
     def scaled_spins(self) -> np.ndarray:
-        """sqrt(I) omega components (variance kT at equilibrium)."""
+        """The recorded sqrt(I) omega components.
+
+        Returns
+        -------
+        numpy.ndarray
+            One flat array [sqrt(kT)]; variance kT at equilibrium.
+        """
         return np.concatenate(self.spins)

@@ -24,21 +24,42 @@ OWNED_PARAMETERS = {"sigma": "the radii (sigma_ik = R_i + R_k)", "epsilon": "sys
 
 @dataclass(frozen=True)
 class Law(Section):
-    """``[law]``: the catalogue law ``name`` with ``parameters`` overriding its defaults, the
-    ``calculus`` of its noise amplitude D (ito, stratonovich, hk), integrated by the calculus' own
-    scheme (docs/physics.md#integrators-that-match-the-calculus) unless ``scheme`` names another and
-    ``force_scheme`` is set (a wrong thermostat: for negative controls only). ``contact_scheme`` is
-    "pairwise" (Metropolis-adjusted pair by pair: Maxwell–Boltzmann exact at any dt) or "explicit"
-    (the first-order kick, where a wrong D shows in the temperatures; docs/physics.md#the-pairwise-contact-step).
-    ``contact_noise = false`` drops the frictional noise of every mode (the inconsistent model),
-    ``friction = false`` the contact entirely.
+    """``[law]``: the friction laws of the contact, the calculus of their noise and how it is integrated.
 
-    Contact modes (docs/physics-modes.md): the law ``name`` acts on the mode its law file names (sliding by
-    default); ``rolling`` and ``spinning`` name laws for those modes (their files must say so), with
-    ``rolling_parameters`` and ``spinning_parameters`` overriding their defaults. One law per mode, all
-    in ``calculus``; spinning exists in 3-D only. ``rolling_noise = false`` (``spinning_noise = false``)
-    drops the noise of that mode's law alone and keeps the others' (a negative control per mode). The
-    laws' modes are checked where the kernels are loaded (fricgen.langevin.simulation.mode_laws)."""
+    The calculus' own scheme integrates the contact (docs/physics.md#integrators-that-match-the-calculus)
+    unless ``scheme`` names another and ``force_scheme`` is set (a wrong thermostat: for negative
+    controls only). Contact modes (docs/physics-modes.md): the law ``name`` acts on the mode its law
+    file names (sliding by default); ``rolling`` and ``spinning`` name laws for those modes (their files
+    must say so). One law per mode, all in ``calculus``; spinning exists in 3-D only. The laws' modes
+    are checked where the kernels are bound (:func:`fricgen.langevin.contact_law.bind`).
+
+    Attributes
+    ----------
+    name : str
+        The law (of the built-in catalogue or the user's law folders).
+    calculus : str
+        The calculus of the noise amplitude D: 'ito', 'stratonovich' or 'hk'.
+    friction : bool
+        False drops the contact entirely (friction and its noise).
+    contact_noise : bool
+        False drops the frictional noise of every mode (the inconsistent model).
+    parameters : dict of str to float
+        Overrides of the law's defaults, in the units of its law file.
+    scheme : str or None
+        Another calculus whose scheme integrates the contact (with ``force_scheme``).
+    force_scheme : bool
+        Whether ``scheme`` may differ from ``calculus``.
+    contact_scheme : str
+        "pairwise" (Metropolis-adjusted pair by pair: Maxwell-Boltzmann exact at any dt) or "explicit"
+        (the first-order kick, where a wrong D shows in the temperatures;
+        docs/physics.md#the-pairwise-contact-step).
+    rolling, spinning : str or None
+        The laws of the rolling and spinning modes, if any.
+    rolling_parameters, spinning_parameters : dict of str to float
+        Overrides of those laws' defaults.
+    rolling_noise, spinning_noise : bool
+        False drops the noise of that mode's law alone (a negative control per mode).
+    """
 
     SECTION = "law"
     name: str = "coulomb_newton"
@@ -101,8 +122,22 @@ class Law(Section):
 
 @dataclass(frozen=True)
 class Thermostat(Section):
-    """``[thermostat]``: ``kT``, solvent friction ``gamma`` (kT t0 / sigma^2) and ``gamma_rot`` (kT t0)
-    of (F-39, 40), 0 for none (the paper's 3 pi and pi); time step ``dt`` in t0."""
+    """``[thermostat]``: the solvent's Langevin thermostat (F-39, 40) and the time step.
+
+    m dv = F dt - gamma v dt + sqrt(2 kT gamma) dW, and I d(omega) = tau dt - gamma_rot omega dt +
+    sqrt(2 kT gamma_rot) dW.
+
+    Attributes
+    ----------
+    kT : float
+        The temperature [kT].
+    gamma : float
+        Translational solvent friction [kT t0/sigma^2]; the paper's 3 pi; 0 for none.
+    gamma_rot : float
+        Rotational solvent friction [kT t0]; the paper's pi; 0 for none.
+    dt : float
+        The time step [t0].
+    """
 
     SECTION = "thermostat"
     kT: float = 1.0
@@ -118,7 +153,13 @@ class Thermostat(Section):
 
 @dataclass(frozen=True)
 class Active(Section):
-    """``[active]``: ``force`` F0 (kT / sigma) along each particle's body axis e1."""
+    """``[active]``: a self-propulsion force along each particle's body axis e1.
+
+    Attributes
+    ----------
+    force : float
+        F0 [kT/sigma]; 0 for passive particles.
+    """
 
     SECTION = "active"
     force: float = 0.0
@@ -130,7 +171,13 @@ class Active(Section):
 
 @dataclass(frozen=True)
 class Bulk(Section):
-    """``[bulk]``: ``force`` = [Fx, Fy(, Fz)] (kT / sigma) on every mobile particle; () for none."""
+    """``[bulk]``: a constant force on every mobile particle (e.g. the pressure gradient of a Poiseuille flow).
+
+    Attributes
+    ----------
+    force : tuple of float
+        [Fx, Fy(, Fz)] [kT/sigma]; () for none.
+    """
 
     SECTION = "bulk"
     force: tuple[float, ...] = ()
@@ -148,9 +195,36 @@ class Bulk(Section):
 
 @dataclass(frozen=True)
 class LangevinConfig(Section):
-    """A Langevin run: the sections above, the WCA strength ``epsilon`` (kT) of the pair
-    ``potential`` (F-34), the noise ``seed``, and numerics: the neighbour-list ``skin`` (sigma) and
-    ``overlap_limit`` (a run stops when r < overlap_limit sigma_ik: it exploded)."""
+    """A Langevin run's configuration: the sections above, the pair potential and the numerics.
+
+    Attributes
+    ----------
+    law : Law
+        The ``[law]`` section.
+    thermostat : Thermostat
+        The ``[thermostat]`` section.
+    active : Active
+        The ``[active]`` section.
+    bulk : Bulk
+        The ``[bulk]`` section.
+    epsilon : float
+        The strength of the pair ``potential`` [kT] (WCA, F-34).
+    seed : int
+        The noise seed, in [0, 2^63).
+    potential : str
+        The pair potential (a built-in potential, "wca").
+    skin : float
+        The neighbour-list skin [sigma].
+    overlap_limit : float
+        A run stops when r < overlap_limit sigma_ik (it exploded) [1].
+
+    Examples
+    --------
+    >>> from fricgen.langevin import LangevinConfig, Law, Thermostat
+    >>> config = LangevinConfig(law=Law(name="coulomb_newton", calculus="stratonovich"), thermostat=Thermostat(dt=5e-4))
+    >>> config.law.integrator.value, config.thermostat.gamma / config.thermostat.gamma_rot
+    ('stratonovich', 3.0)
+    """
 
     law: Law = field(default_factory=Law)
     thermostat: Thermostat = field(default_factory=Thermostat)
@@ -168,4 +242,11 @@ class LangevinConfig(Section):
         self.require_positive("skin", "overlap_limit")
 
     def as_dict(self) -> dict:
+        """The configuration as nested plain data (the sections as dicts).
+
+        Returns
+        -------
+        dict
+            Field name to value, sections as dicts.
+        """
         return dataclasses.asdict(self)

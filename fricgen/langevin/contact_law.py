@@ -25,15 +25,30 @@ LAW_KEYS = (("name", "parameters", None), ("rolling", "rolling_parameters", "rol
 
 @dataclass(frozen=True)
 class ModeLaw:
-    """One law of a contact: its kernels, its parameter overrides (checked against the law's ranges) and
-    the key of ``[law]`` that named it (``law.name``, ``law.rolling`` or ``law.spinning``)."""
+    """One law of a contact.
+
+    Attributes
+    ----------
+    kernels : LawKernels
+        Its kernels.
+    parameters : mapping of str to float
+        Its parameter overrides, checked against the law's ranges.
+    key : str
+        The key of ``[law]`` that named it (``name``, ``rolling`` or ``spinning``).
+    """
 
     kernels: LawKernels
     parameters: Mapping[str, float]
     key: str
 
     def record(self) -> list[str]:
-        """[name, law file, hash]: what a file on disk keeps of the law (checked when it is read back)."""
+        """What a file on disk keeps of the law (checked when it is read back).
+
+        Returns
+        -------
+        list of str
+            [name, law file, hash].
+        """
         return [self.kernels.name, str(self.kernels.path or ""), self.kernels.source_hash]
 
 
@@ -41,19 +56,25 @@ class ModeLaw:
 class ContactLaw:
     """The laws of a pair's contact modes, resolved and checked (:func:`bind`).
 
-    ``calculus``: the calculus of every law's noise (``ito``, ``stratonovich``, ``hanggi``);
-    ``laws``: the laws in the order of ``[law]`` (``name`` first); ``modes``: the same by the mode
-    each acts on."""
+    Attributes
+    ----------
+    calculus : str
+        The calculus of every law's noise ('ito', 'stratonovich', 'hk').
+    laws : tuple of ModeLaw
+        The laws in the order of ``[law]`` (``name`` first).
+    """
 
     calculus: str
     laws: tuple[ModeLaw, ...]
 
     @property
     def modes(self) -> dict[str, ModeLaw]:
+        """The laws by the contact mode each acts on."""
         return {law.kernels.mode: law for law in self.laws}
 
     @property
     def names(self) -> list[str]:
+        """The laws' names, in the order of ``[law]``."""
         return [law.kernels.name for law in self.laws]
 
     @property
@@ -68,16 +89,53 @@ def named_keys(section: Law) -> list[tuple[str, str, str | None]]:
 
 
 def law_names(section: Law) -> list[str]:
-    """The names of the laws of ``section``: ``name``, then ``rolling`` and ``spinning`` where given."""
+    """The names of the laws of a ``[law]`` section.
+
+    Parameters
+    ----------
+    section : Law
+        The section.
+
+    Returns
+    -------
+    list of str
+        ``name``, then ``rolling`` and ``spinning`` where given.
+    """
     return [getattr(section, key) for key, _, _ in named_keys(section)]
 
 
 def bind(section: Law, kernels: LawKernels | Sequence[LawKernels], dim: int) -> ContactLaw:
-    """The contact law of the ``[law]`` section ``section`` from the kernels of its laws (``name``, then
-    ``rolling`` and ``spinning`` where given, in this order), for ``dim``-D pairs. ConfigError naming
-    the key for kernels of other laws than the section names, a law on another mode than its key says,
-    two laws on one mode, a mode the pair does not have (spinning in 2-D), a calculus a law lacks or a
-    parameter out of its law's range."""
+    """The contact law of a ``[law]`` section from the kernels of its laws, checked once.
+
+    Parameters
+    ----------
+    section : Law
+        The ``[law]`` section.
+    kernels : LawKernels or sequence of LawKernels
+        The kernels of its laws: ``name``, then ``rolling`` and ``spinning`` where given, in this order.
+    dim : int
+        The dimension of the pairs, 2 or 3.
+
+    Returns
+    -------
+    ContactLaw
+        The bound laws.
+
+    Raises
+    ------
+    ConfigError
+        Naming the key, for kernels of other laws than the section names, a law on another mode than
+        its key says, two laws on one mode, a mode the pair does not have (spinning in 2-D), a
+        calculus a law lacks or a parameter out of its law's range.
+
+    Examples
+    --------
+    >>> import fricgen
+    >>> from fricgen.langevin import Law
+    >>> from fricgen.langevin.contact_law import bind
+    >>> bind(Law(name="coulomb_newton"), fricgen.load_law("coulomb_newton"), dim=3).names
+    ['coulomb_newton']
+    """
     handed = [kernels] if isinstance(kernels, LawKernels) else list(kernels)
     named, names = named_keys(section), law_names(section)
     if [k.name for k in handed] != names:

@@ -79,19 +79,49 @@ def mode_mobilities(particles: Particles, mode: str, limit: int = TABLES) -> np.
 
 
 class Simulation:
-    """Runs a configuration on a state (in place); ``run`` calls observers between chunks.
+    """Runs a configuration on a state, in place: frictional spheres with thermal contact noise.
 
-    ``threads``: None (the default) measures 1 thread against all that numba may use as the run goes
-    and takes the faster (fricgen.langevin.threads); a number fixes it. Results do not depend on it.
-    ``neighbor_list``: the engine's Verlet list, handed back in at each call and rebuilt by the engine
-    when it no longer holds for the state (fricgen.langevin.neighbors.still_valid), so a state
-    changed between calls is safe.
+    Each step integrates the thermostat (F-39, 40), the pair potential, the active and bulk forces
+    and, per contact, the friction f(u) and its random force sqrt(D) with D of the law's calculus
+    (docs/physics.md). Results do not depend on the thread count.
 
-    ``law``: the resolved contact law: a :class:`~fricgen.langevin.contact_law.ContactLaw` (an edge's
-    resolution of ``config.law``), or the kernels of ``config.law.name`` (:func:`fricgen.load_law`), or a
-    sequence of them for ``name``, ``rolling`` and ``spinning`` (those given, in this order), which are
-    checked here against ``config.law`` (:func:`~fricgen.langevin.contact_law.bind`). Never a name: the
-    engine looks nothing up. Each law acts on the contact mode its file names (docs/physics-modes.md)."""
+    Parameters
+    ----------
+    config : LangevinConfig
+        The configuration.
+    particles : Particles
+        The particles.
+    state : State
+        The initial state; advanced in place (``simulation.state``).
+    law : ContactLaw or LawKernels or sequence of LawKernels
+        The resolved contact law: a :class:`~fricgen.langevin.contact_law.ContactLaw`, or the kernels
+        of ``config.law.name`` (:func:`fricgen.load_law`), or a sequence of them for ``name``,
+        ``rolling`` and ``spinning`` (those given, in this order), checked here against
+        ``config.law`` (:func:`~fricgen.langevin.contact_law.bind`). Never a name: the engine looks
+        nothing up.
+
+    Attributes
+    ----------
+    threads : int or None
+        None (the default) measures 1 thread against all that numba may use as the run goes and
+        takes the faster; a number fixes it.
+
+    Raises
+    ------
+    ConfigError
+        For a law that does not fit ``config.law`` or the dimension, or a 2-D state with z != 0.
+
+    Examples
+    --------
+    >>> import fricgen
+    >>> from fricgen.langevin import LangevinConfig, Particles, Simulation, lattice_state, temperatures
+    >>> particles = Particles.spheres(16)
+    >>> state = lattice_state(particles, dim=2, fraction=0.3, seed=1)
+    >>> simulation = Simulation(LangevinConfig(), particles, state, law=fricgen.load_law("coulomb_newton"))
+    >>> simulation.run(200, every=100)
+    >>> simulation.state.step, [round(t, 2) for t in temperatures(simulation.state, particles)]
+    (200, [0.57, 1.0])
+    """
 
     threads: int | None = None
 
@@ -141,8 +171,14 @@ class Simulation:
         return values
 
     def mode_kernels(self) -> tuple:
-        """The rolling and spinning laws' kernels, (contact, slope, weight) of each as records.MODE_KERNELS; the
-        sliding slot's where a mode has no law (the couplings say which act)."""
+        """The rolling and spinning laws' kernels, as the compiled engine takes them.
+
+        Returns
+        -------
+        tuple
+            (contact, slope, weight) of each mode as records.MODE_KERNELS; the sliding law's where a mode
+            has no law (the couplings say which act).
+        """
         calculus, modes, out = self.law.calculus, self.law.modes, []
         for mode in ("rolling", "spinning"):
             kernels = modes[mode].kernels if mode in modes else self.kernels
@@ -155,12 +191,24 @@ class Simulation:
         return self.config.law.integrator.value
 
     def step_kernels(self) -> tuple:
-        """The kernels of the compiled engine, (force, contact, slope, weight) as records.KERNELS."""
+        """The kernels of the compiled engine.
+
+        Returns
+        -------
+        tuple
+            (force, contact, slope, weight) as records.KERNELS.
+        """
         weight = self.kernels.module.weight if self.kernels.has_weight else no_weight
         return self.potential.force, self.contact, self.kernels.friction_slope, weight
 
     def dynamics(self) -> Dynamics:
-        """The step parameters of the compiled engine."""
+        """The step parameters of the compiled engine.
+
+        Returns
+        -------
+        Dynamics
+            Box, dt [t0], kT, gamma, gamma_rot, forces, seed, scheme and numerics of this run.
+        """
         c, s, t = self.config, self.state, self.config.thermostat
         inv_box = np.array([1.0 / s.box[a] if a < s.dim else 0.0 for a in range(3)])
         return Dynamics(
@@ -184,7 +232,18 @@ class Simulation:
         )
 
     def advance(self, steps: int) -> None:
-        """Advance by ``steps`` compiled steps; raises SimulationError if the run blows up."""
+        """Advance by compiled steps.
+
+        Parameters
+        ----------
+        steps : int
+            The number of steps of ``config.thermostat.dt``.
+
+        Raises
+        ------
+        SimulationError
+            If the run blows up (particles overlap).
+        """
         before = numba.get_num_threads()
         try:
             if self.threads is not None:
@@ -230,7 +289,22 @@ class Simulation:
             )
 
     def run(self, steps: int, every: int = 1000, observers: list[Callable[[Simulation], None]] = ()) -> None:
-        """Advance ``steps`` steps in chunks of ``every``, calling each observer after each chunk."""
+        """Advance in chunks, calling each observer after each chunk.
+
+        Parameters
+        ----------
+        steps : int
+            The number of steps (time steps * dt [t0]).
+        every : int
+            The chunk length in steps.
+        observers : sequence of callable
+            Each called as ``observer(simulation)`` after each chunk (e.g. :class:`Sampler`, :class:`GSDWriter`).
+
+        Raises
+        ------
+        SimulationError
+            If the run blows up.
+        """
         if steps < 0 or every <= 0:
             raise ConfigError("steps", f"must be >= 0 with chunks every > 0, got steps = {steps}, every = {every}", "fix the call")
         done = 0

@@ -18,7 +18,25 @@ from .pairs import PAIR_FIELDS, WCA_RANGE
 
 @dataclass(frozen=True)
 class Particles:
-    """Static per-particle properties; immobile (wall) particles have ``mobile = False``."""
+    """Static per-particle properties; immobile (wall) particles have ``mobile = False``.
+
+    Attributes
+    ----------
+    radius : numpy.ndarray
+        Radii R_i [sigma], shape (N,).
+    mass : numpy.ndarray
+        Masses m_i [m].
+    inertia : numpy.ndarray
+        Moments of inertia I_i [m sigma^2].
+    mobile : numpy.ndarray
+        bool: whether a particle moves.
+
+    Examples
+    --------
+    >>> from fricgen.langevin import Particles
+    >>> Particles.spheres(2).inertia  # I = 2/5 m R^2 with R = 1/2
+    array([0.1, 0.1])
+    """
 
     radius: np.ndarray
     mass: np.ndarray
@@ -37,22 +55,56 @@ class Particles:
 
     @classmethod
     def spheres(cls, n: int, radius: float = 0.5, mass: float = 1.0) -> Particles:
-        """n identical solid spheres, I = 2/5 m R^2."""
+        """n identical solid spheres, I = 2/5 m R^2.
+
+        Parameters
+        ----------
+        n : int
+            The number of spheres.
+        radius : float
+            Their radius [sigma].
+        mass : float
+            Their mass [m].
+
+        Returns
+        -------
+        Particles
+            All mobile.
+        """
         return cls(np.full(n, radius), np.full(n, mass), np.full(n, 0.4 * mass * radius**2), np.ones(n, dtype=bool))
 
     @property
     def inv_mass(self) -> np.ndarray:
+        """1/m_i [1/m], 0 for immobile particles."""
         return np.where(self.mobile, 1.0 / self.mass, 0.0)
 
     @property
     def inv_inertia(self) -> np.ndarray:
+        """1/I_i [1/(m sigma^2)], 0 for immobile particles."""
         return np.where(self.mobile, 1.0 / self.inertia, 0.0)
 
 
 @dataclass
 class State:
-    """Dynamic state: positions (N, 3) wrapped into the box, velocities, angular velocities, unit
-    quaternions (s, x, y, z) of the body frames, the step count and the box lengths (Lz = 0 in 2-D)."""
+    """Dynamic state of the spheres; a :class:`Simulation` advances it in place.
+
+    Attributes
+    ----------
+    position : numpy.ndarray
+        Positions (N, 3) [sigma], wrapped into the box; z = 0 in 2-D.
+    velocity : numpy.ndarray
+        Velocities (N, 3) [sigma/t0].
+    omega : numpy.ndarray
+        Angular velocities (N, 3) [1/t0]; only z in 2-D.
+    orientation : numpy.ndarray
+        Unit quaternions (s, x, y, z) of the body frames, (N, 4).
+    box : numpy.ndarray
+        The periodic box lengths (3,) [sigma]; Lz = 0 in 2-D.
+    dim : int
+        2 or 3.
+    step : int
+        The step count.
+    """
 
     position: np.ndarray
     velocity: np.ndarray
@@ -63,6 +115,13 @@ class State:
     step: int = 0
 
     def copy(self) -> State:
+        """A deep copy (arrays copied).
+
+        Returns
+        -------
+        State
+            The copy.
+        """
         return State(
             self.position.copy(), self.velocity.copy(), self.omega.copy(), self.orientation.copy(), self.box.copy(), self.dim, self.step
         )
@@ -73,16 +132,24 @@ def packing_box(particles: Particles, dim: int, fraction: float) -> np.ndarray:
 
     The side is L = (π Σ R_i² / φ)^(1/2) in 2-D and (4π/3 Σ R_i³ / φ)^(1/3) in 3-D.
 
-    Args:
-        particles: the particles; only the mobile ones count.
-        dim: 2 or 3.
-        fraction: the packing fraction φ, in (0, 1).
+    Parameters
+    ----------
+    particles : Particles
+        The particles; only the mobile ones count.
+    dim : int
+        2 or 3.
+    fraction : float
+        The packing fraction φ [1], in (0, 1).
 
-    Returns:
-        The box lengths (L_x, L_y, L_z) in σ; L_z = 0 in 2-D.
+    Returns
+    -------
+    np.ndarray
+        The box lengths (L_x, L_y, L_z) [sigma]; L_z = 0 in 2-D.
 
-    Raises:
-        ConfigError: for a fraction outside (0, 1).
+    Raises
+    ------
+    ConfigError
+        For a fraction outside (0, 1).
     """
     if not 0 < fraction < 1:
         raise ConfigError("fraction", f"packing fraction must be in (0, 1), got {fraction}", "give a smaller value")
@@ -199,15 +266,24 @@ def thermal_state(particles: Particles, position: np.ndarray, box: np.ndarray, d
     Each velocity component has variance kT/m, each spin component kT/I (in 2-D only v_x, v_y and
     ω_z are drawn); the draws come from the counter-based generator, keyed on ``seed``.
 
-    Args:
-        particles: radii, masses and moments of inertia.
-        position: (N, 3) positions in σ, inside ``box``.
-        box: the box lengths in σ.
-        dim: 2 or 3.
-        kT: the temperature, in energy units.
-        seed: the noise seed (≥ 0).
+    Parameters
+    ----------
+    particles : Particles
+        Radii, masses and moments of inertia.
+    position : np.ndarray
+        (N, 3) positions [sigma], inside ``box``.
+    box : np.ndarray
+        The box lengths [sigma].
+    dim : int
+        2 or 3.
+    kT : float
+        The temperature [kT].
+    seed : int
+        The noise seed (≥ 0).
 
-    Returns:
+    Returns
+    -------
+    State
         The state at step 0.
     """
     n = particles.radius.size
@@ -229,19 +305,29 @@ def lattice_state(particles: Particles, dim: int, fraction: float, kT: float = 1
     """Particles on a square (cubic) lattice in a periodic box, Maxwell–Boltzmann velocities and
     spins at kT, random orientations.
 
-    Args:
-        particles: the particles; the box is sized for their packing fraction (:func:`packing_box`).
-        dim: 2 or 3.
-        fraction: the area (2-D) or volume (3-D) fraction, below the lattice limit (π/4 in 2-D, π/6 in
-            3-D for a square or cube number of particles).
-        kT: the temperature of the velocities and spins, in energy units.
-        seed: the noise seed (≥ 0).
+    Parameters
+    ----------
+    particles : Particles
+        The particles; the box is sized for their packing fraction (:func:`packing_box`).
+    dim : int
+        2 or 3.
+    fraction : float
+        The area (2-D) or volume (3-D) fraction, below the lattice limit (π/4 in 2-D, π/6 in
+        3-D for a square or cube number of particles).
+    kT : float
+        The temperature of the velocities and spins [kT].
+    seed : int
+        The noise seed (≥ 0).
 
-    Returns:
+    Returns
+    -------
+    State
         The state at step 0.
 
-    Raises:
-        ConfigError: for a dimension other than 2 or 3, or a lattice whose spheres would overlap.
+    Raises
+    ------
+    ConfigError
+        For a dimension other than 2 or 3, or a lattice whose spheres would overlap.
     """
     if dim not in (2, 3):
         raise ConfigError("dim", f"must be 2 or 3, got {dim}", "give 2 or 3")
@@ -258,19 +344,30 @@ def add_slab_walls(
     centre, with the same Gaussian ζ_j on both walls (as in the paper). Wall spheres copy the
     radius and mass of particle 0.
 
-    Args:
-        particles: the mobile particles.
-        state: their state; its box sets the walls' extent.
-        half_width: the distance of each wall from the box centre, in σ (0 < 2·half_width < L_y).
-        roughness: the amplitude δ_w of the walls' Gaussian roughness, in σ (≥ 0).
-        seed: the seed of the roughness ζ_j.
-        spacing: the walls' lattice constant, in σ.
+    Parameters
+    ----------
+    particles : Particles
+        The mobile particles.
+    state : State
+        Their state; its box sets the walls' extent.
+    half_width : float
+        The distance of each wall from the box centre [sigma] (0 < 2·half_width < L_y).
+    roughness : float
+        The amplitude δ_w of the walls' Gaussian roughness [sigma] (≥ 0).
+    seed : int
+        The seed of the roughness ζ_j.
+    spacing : float
+        The walls' lattice constant [sigma].
 
-    Returns:
+    Returns
+    -------
+    tuple[Particles, State]
         The particles and the state with the wall spheres appended (immobile, at rest).
 
-    Raises:
-        ConfigError: for a negative roughness, a non-positive spacing or walls outside the box.
+    Raises
+    ------
+    ConfigError
+        For a negative roughness, a non-positive spacing or walls outside the box.
     """
     if roughness < 0 or spacing <= 0 or not 0 < 2 * half_width < state.box[1]:
         raise ConfigError("walls", "need roughness >= 0, spacing > 0 and 0 < 2 half_width < L_y", "fix them")

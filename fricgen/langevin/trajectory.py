@@ -28,7 +28,17 @@ from .system import Particles, State
 
 
 class GSDWriter:
-    """Observer for Simulation.run that appends a frame each time it is called."""
+    """An observer for :meth:`Simulation.run` that appends a GSD (HOOMD) frame each time it is called.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The ``.gsd`` file.
+    particles : Particles
+        The particles (radii, masses; walls get type "W").
+    mode : str
+        The file mode of gsd.hoomd.open: "w" writes a new file, "a" appends.
+    """
 
     def __init__(self, path: str | Path, particles: Particles, mode: str = "w"):
         self.path = Path(path)
@@ -36,6 +46,19 @@ class GSDWriter:
         self.file = gsd.hoomd.open(str(self.path), mode)
 
     def frame(self, state: State) -> gsd.hoomd.Frame:
+        """The GSD frame of a state: positions centred on the box [sigma], velocities [sigma/t0],
+        orientations, diameters, masses and moments of inertia, types "A" (mobile) and "W" (wall).
+
+        Parameters
+        ----------
+        state : State
+            The state.
+
+        Returns
+        -------
+        gsd.hoomd.Frame
+            The frame.
+        """
         p = self.particles
         frame = gsd.hoomd.Frame()
         frame.configuration.step = state.step
@@ -59,6 +82,7 @@ class GSDWriter:
         self.file.flush()
 
     def close(self) -> None:
+        """Close the file."""
         self.file.close()
 
     def __enter__(self) -> GSDWriter:
@@ -89,11 +113,16 @@ def save_checkpoint(path: str | Path, simulation: Simulation) -> Path:
     """Everything needed to continue bit-identically (state, particles, configuration, the law file
     and its hash), written atomically (a temporary file, then a rename).
 
-    Args:
-        path: the ``.npz`` file to write.
-        simulation: the simulation to save.
+    Parameters
+    ----------
+    path : str | Path
+        The ``.npz`` file to write.
+    simulation : Simulation
+        The simulation to save.
 
-    Returns:
+    Returns
+    -------
+    Path
         The path written.
     """
     path = Path(path)
@@ -123,8 +152,20 @@ def save_checkpoint(path: str | Path, simulation: Simulation) -> Path:
 
 
 def checkpoint_config(path: str | Path) -> LangevinConfig:
-    """The configuration a checkpoint was run with: what an edge resolves the law of before
-    :func:`load_checkpoint` (``config.law`` names the laws)."""
+    """The configuration a checkpoint was run with.
+
+    What an edge resolves the law of before :func:`load_checkpoint` (``config.law`` names the laws).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        A file written by :func:`save_checkpoint`.
+
+    Returns
+    -------
+    LangevinConfig
+        The stored configuration.
+    """
     with np.load(Path(path)) as data:
         return _stored_config(data)
 
@@ -141,12 +182,17 @@ def load_checkpoint(path: str | Path, law: ContactLaw | LawKernels | Sequence[La
     A checkpoint records the law files it ran (path and hash; those of the rolling and spinning laws
     too): resuming with kernels of another version of a law is refused.
 
-    Args:
-        path: a file written by :func:`save_checkpoint`.
-        law: the resolved contact law of the stored configuration, as :class:`Simulation` takes it
-            (a ContactLaw, or the kernels of each law of ``[law]``: name, rolling, spinning).
+    Parameters
+    ----------
+    path : str | Path
+        A file written by :func:`save_checkpoint`.
+    law : ContactLaw | LawKernels | Sequence[LawKernels]
+        The resolved contact law of the stored configuration, as :class:`Simulation` takes it
+        (a ContactLaw, or the kernels of each law of ``[law]``: name, rolling, spinning).
 
-    Returns:
+    Returns
+    -------
+    Simulation
         The simulation at the saved step.
     """
     with np.load(Path(path)) as data:
