@@ -136,6 +136,7 @@ class FrictionLaw:
 
     @property
     def defaults(self) -> dict[sp.Symbol, float]:
+        """The parameters' default values by SymPy symbol (to substitute into f or D)."""
         return {p.symbol: p.default for p in self.parameters}
 
 

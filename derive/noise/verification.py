@@ -84,6 +84,7 @@ class Report:
 
     @property
     def verified(self) -> bool:
+        """Whether every check passed."""
         return all(self.checks.values())
 
     def as_dict(self) -> dict:

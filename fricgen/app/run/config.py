@@ -163,7 +163,34 @@ class Output(Section):
 
 @dataclass(frozen=True)
 class RunConfig(Section):
-    """A validated configuration; ``walls`` is None without a ``[walls]`` section."""
+    """A validated run file (``fricgen run``): its sections, each checked once.
+
+    Attributes
+    ----------
+    system : System
+        ``[system]``: dimension, particles, box or packing fraction, WCA strength [kT], start.
+    law : RunLaw
+        ``[law]``: the engine's law section and ``folder``, a folder of your own law files.
+    thermostat : Thermostat
+        ``[thermostat]``: kT [kT], gamma [kT t0/sigma^2], gamma_rot [kT t0], dt [t0].
+    active : Active
+        ``[active]``: the self-propulsion force [kT/sigma].
+    bulk : Bulk
+        ``[bulk]``: the body force [kT/sigma].
+    walls : Walls or None
+        ``[walls]``: two walls of immobile spheres (F-42); None without the section.
+    run : Run
+        ``[run]``: steps, equilibration, seed, chunk.
+    output : Output
+        ``[output]``: observables and their periods, trajectory, checkpoints.
+
+    Examples
+    --------
+    >>> from fricgen.app import load_config, resolve_source
+    >>> config = load_config(resolve_source("passive"), [("system.n", 64), ("thermostat.dt", 5e-4)])
+    >>> config.system.n, config.thermostat.dt, config.langevin().law.name
+    (64, 0.0005, 'coulomb_newton')
+    """
 
     system: System
     law: RunLaw = field(default_factory=RunLaw)
@@ -223,10 +250,23 @@ class RunConfig(Section):
         return tuple(kind for kind in KINDS if found[kind])
 
     def langevin(self) -> LangevinConfig:
-        """The engine's configuration: its own sections, the WCA strength and the seed."""
+        """The engine's configuration: its own sections, the WCA strength and the seed.
+
+        Returns
+        -------
+        LangevinConfig
+            What :class:`fricgen.langevin.Simulation` takes.
+        """
         return LangevinConfig(self.law.engine(), self.thermostat, self.active, self.bulk, epsilon=self.system.epsilon, seed=self.run.seed)
 
     def as_dict(self) -> dict:
+        """The configuration as nested plain data.
+
+        Returns
+        -------
+        dict
+            Section name to its fields.
+        """
         return dataclasses.asdict(self)
 
 
@@ -236,7 +276,18 @@ def example_names() -> list[str]:
 
 
 def resolve_source(source: str) -> Path:
-    """The TOML file ``source``, or the bundled example of that name (``passive``, ...)."""
+    """The run file of a ``fricgen run`` argument.
+
+    Parameters
+    ----------
+    source : str
+        A TOML file, or the name of a bundled example (``passive``, ``poiseuille``, ``active``).
+
+    Returns
+    -------
+    pathlib.Path
+        The file.
+    """
     path = Path(source)
     if path.is_file():
         return path
@@ -273,8 +324,26 @@ def read_toml(path: Path) -> dict:
 
 
 def load_config(path: Path, overrides: list[tuple[str, object]] = ()) -> RunConfig:
-    """Read, override (``section.key`` paths) and validate a configuration (no files written); a
-    ``law.folder`` becomes an absolute path (relative ones are taken from the file's folder)."""
+    """Read, override and validate a run file (no files written).
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The TOML file.
+    overrides : list of (str, object)
+        ``("section.key", value)`` pairs applied before validation, as ``--set``.
+
+    Returns
+    -------
+    RunConfig
+        The configuration; a ``law.folder`` becomes an absolute path (relative ones are taken from
+        the file's folder).
+
+    Raises
+    ------
+    ConfigError
+        Naming the key, the problem and the fix.
+    """
     data = read_toml(path)
     for key, value in overrides:
         *sections, name = key.split(".")

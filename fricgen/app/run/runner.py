@@ -55,20 +55,31 @@ class Plan:
 def plan(source: str, settings: list[str], steps: int | None, out: str | None, resume: str | None, search: LawSearch = BUILT_IN) -> Plan:
     """A run of ``fricgen run``, everything checked and nothing written.
 
-    Args:
-        source: a TOML file, or the name of a bundled example (``passive``, ``poiseuille``, ``active``).
-        settings: overrides ``SECTION.KEY=VALUE`` (TOML values), as ``--set``.
-        steps: overrides ``run.steps``; None keeps the file's.
-        out: the output folder; None: ``fricgen-<config name>``.
-        resume: a checkpoint of a stopped run to continue, or None.
-        search: where law names are looked up (the edge's ``--laws`` and FRICGEN_LAWS), with the
-            configuration's ``law.folder``.
+    Parameters
+    ----------
+    source : str
+        A TOML file, or the name of a bundled example (``passive``, ``poiseuille``, ``active``).
+    settings : list[str]
+        Overrides ``SECTION.KEY=VALUE`` (TOML values), as ``--set``.
+    steps : int | None
+        Overrides ``run.steps``; None keeps the file's.
+    out : str | None
+        The output folder; None: ``fricgen-<config name>``.
+    resume : str | None
+        A checkpoint of a stopped run to continue, or None.
+    search : LawSearch
+        Where law names are looked up (the edge's ``--laws`` and FRICGEN_LAWS), with the
+        configuration's ``law.folder``.
 
-    Returns:
+    Returns
+    -------
+    Plan
         The plan: the validated configuration, the simulation at its first step and the folder.
 
-    Raises:
-        ConfigError: naming the key, the problem and the fix.
+    Raises
+    ------
+    ConfigError
+        Naming the key, the problem and the fix.
     """
     path = resolve_source(source)
     overrides = [parse_override(text) for text in settings] + ([("run.steps", steps)] if steps is not None else [])
@@ -177,11 +188,16 @@ def _check_resume(config: RunConfig, resumed: Simulation, fresh: Simulation) -> 
 def execute(plan: Plan, as_json: bool = False) -> int:
     """Run a plan to the end or to Ctrl-C, writing its outputs (tables, trajectory, checkpoints, summary).
 
-    Args:
-        plan: a plan of :func:`plan`.
-        as_json: print the summary as JSON instead of the report.
+    Parameters
+    ----------
+    plan : Plan
+        A plan of :func:`plan`.
+    as_json : bool
+        Print the summary as JSON instead of the report.
 
-    Returns:
+    Returns
+    -------
+    int
         The exit status: 0 done, 1 blew up, 130 interrupted (a checkpoint to resume from is written).
     """
     config, simulation, folder = plan.config, plan.simulation, plan.folder

@@ -34,11 +34,16 @@ DEMO = {"law": "coulomb_newton", "calculus": "ito", "dim": 2, "n": 512, "phi": 0
 def run_demo(folder: Path, **changes) -> dict:
     """Run the demo, with and without the contact noise, and write its files.
 
-    Args:
-        folder: the output folder (histograms.png, temperatures.png, summary.json).
-        **changes: overrides of entries of ``DEMO`` (``n``, ``dt``, ``total_time`` in t0, ``seed``, ...).
+    Parameters
+    ----------
+    folder : Path
+        The output folder (histograms.png, temperatures.png, summary.json).
+    **changes
+        Overrides of entries of ``DEMO`` (``n``, ``dt``, ``total_time`` [t0], ``seed``, ...).
 
-    Returns:
+    Returns
+    -------
+    dict
         The summary, as written to summary.json.
     """
     setup = {**DEMO, **changes}

@@ -115,9 +115,24 @@ class PassiveCheck(Section):
 
 
 def passive_check(law: str, solvent: bool = True, **options) -> PassiveCheck:
-    """A PassiveCheck from flat options: the fields of PassiveCheck, of Law (calculus, contact_noise,
-    parameters, scheme, force_scheme, contact_scheme) and of Thermostat (kT, dt); ``solvent=False`` sets
-    gamma = gamma_R = 0 (the friction thermostat alone)."""
+    """The set-up of a thermostat check from flat options.
+
+    Parameters
+    ----------
+    law : str
+        The law's name.
+    solvent : bool
+        False sets gamma = gamma_R = 0 (the friction thermostat alone).
+    **options
+        The fields of PassiveCheck (``dim``, ``n``, ``phi``, ``total_time`` [t0], ``seed``, ...), of Law
+        (calculus, contact_noise, parameters, scheme, force_scheme, contact_scheme) and of Thermostat
+        (kT [kT], dt [t0]).
+
+    Returns
+    -------
+    PassiveCheck
+        The checked set-up.
+    """
     sections = {Law: {"name": law}, Thermostat: {} if solvent else {"gamma": 0.0, "gamma_rot": 0.0}}
     for section, values in sections.items():
         names = {f.name for f in dataclasses.fields(section)}
@@ -164,11 +179,23 @@ class CheckResult:
 def passive_run(
     check: PassiveCheck, law: ContactLaw | LawKernels | Sequence[LawKernels], observers: Sequence[Callable[[Simulation], None]] = ()
 ) -> tuple[CheckResult, Sampler]:
-    """Run the passive check; return its result and the sampler (velocity and spin samples).
+    """Run a passive check: equilibrate, then sample the temperatures and velocity distributions.
 
-    ``law``: the resolved law of ``check.law``, as :class:`~fricgen.langevin.simulation.Simulation`
-    takes it (:func:`fricgen.load_law`'s kernels, or the edge's ContactLaw); ``observers`` are called
-    after every chunk of the equilibration and of the sampling."""
+    Parameters
+    ----------
+    check : PassiveCheck
+        The set-up (:func:`passive_check`).
+    law : ContactLaw or LawKernels or sequence of LawKernels
+        The resolved law of ``check.law``, as :class:`~fricgen.langevin.Simulation` takes it
+        (:func:`fricgen.load_law`'s kernels, or the edge's ContactLaw).
+    observers : sequence of callable
+        Called after every chunk of the equilibration and of the sampling.
+
+    Returns
+    -------
+    tuple of (CheckResult, Sampler)
+        The result (as :func:`thermostat_check`'s) and the sampler with the velocity and spin samples.
+    """
     start = time.perf_counter()
     kT, dim = check.thermostat.kT, check.dim
     particles = Particles.spheres(check.size, RADIUS, MASS)
@@ -218,16 +245,21 @@ def thermostat_check(law: str | LawKernels, **options) -> CheckResult:
     temperatures of translation and rotation must be kT within ``z_limit`` standard errors and the
     KL divergences (F-41) below ``kl_limit``.
 
-    Args:
-        law: the law's kernels (:func:`fricgen.load_law`, for a law of one's own folder), or its name,
-            which is resolved here as :func:`fricgen.load_law` resolves it (FRICGEN_LAWS's folders,
-            then the built-in catalogue).
-        **options: flat options as in :func:`passive_check`: ``dim``, ``n``, ``phi``, ``total_time``
-            (in t0), ``seed``, ``calculus``, ``contact_noise``, ``contact_scheme``, ``parameters``,
-            ``kT``, ``dt``, ``solvent``, ...
+    Parameters
+    ----------
+    law : str | LawKernels
+        The law's kernels (:func:`fricgen.load_law`, for a law of one's own folder), or its name,
+        which is resolved here as :func:`fricgen.load_law` resolves it (FRICGEN_LAWS's folders,
+        then the built-in catalogue).
+    **options
+        Flat options as in :func:`passive_check`: ``dim``, ``n``, ``phi``, ``total_time``
+        [t0], ``seed``, ``calculus``, ``contact_noise``, ``contact_scheme``, ``parameters``,
+        ``kT``, ``dt``, ``solvent``, ...
 
-    Returns:
-        T_trans, T_rot (in kT) with their block errors, the KL divergences, the verdict ``passed``
+    Returns
+    -------
+    CheckResult
+        T_trans, T_rot [kT] with their block errors, the KL divergences, the verdict ``passed``
         and, for the pairwise contact step, its rejection rate.
     """
     kernels = law if isinstance(law, LawKernels) else load_law(law)
