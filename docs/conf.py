@@ -53,12 +53,14 @@ viewcode_follow_imported_members = False
 autodoc_member_order = "bysource"
 autodoc_typehints = "description"
 autodoc_typehints_description_target = "documented"  # types of documented arguments; a dataclass's fields carry their own
-autodoc_default_options = {"members": True, "undoc-members": True, "exclude-members": "SECTION"}
+# Documented members only: a dataclass's fields are listed once, in its docstring's Attributes (shown as a
+# field list, napoleon_use_ivar); every public callable and property has a docstring (tests/test_api_docs.py).
+autodoc_default_options = {"members": True, "exclude-members": "SECTION"}
 napoleon_google_docstring = True  # older docstrings (Args:, Returns:)
 napoleon_numpy_docstring = True  # the public API's (Parameters, Returns with units; tests/test_api_docs.py)
 autodoc_preserve_defaults = True  # a default renders as written (catalogue=CATALOGUE), not as this machine's path
 napoleon_use_rtype = False
-napoleon_use_ivar = True  # "Attributes:" as a field list: dataclass fields are also documented as members
+napoleon_use_ivar = True  # Attributes as a field list of the class
 
 html_theme = "furo"
 html_title = f"fricgen {release}"
