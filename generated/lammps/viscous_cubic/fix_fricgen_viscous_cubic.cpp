@@ -308,6 +308,8 @@ inline Cx inverse(Cx z)
   return {z.re * scale, -z.im * scale};
 }
 
+const int SOLVENT_STREAM = 1;    // fricgen.rng.SOLVENT
+
 // 53-bit uniform in [0, 1) for (key, j): fricgen.rng.uniform.
 inline double uniform(uint64_t key, uint64_t j)
 {
@@ -415,6 +417,7 @@ FixFricgenViscousCubic::FixFricgenViscousCubic(LAMMPS *lmp, int narg, char **arg
   if (!(kT > 0.0)) error->all(FLERR, "fix fricgen/exact/viscous_cubic: kT must be > 0, got {}", kT);
   if (seed < 0) error->all(FLERR, "fix fricgen/exact/viscous_cubic: seed must be >= 0, got {}", seed);
   noise_on = 1;
+  gamma = gamma_rot = 0.0;
   calculus = 0;
   inertia = 0.4;
   for (int k = 0; k < NPARAMS; k++) params[k] = DEFAULTS[k];
@@ -422,6 +425,15 @@ FixFricgenViscousCubic::FixFricgenViscousCubic(LAMMPS *lmp, int narg, char **arg
   for (int a = 5; a < narg; a += 2) {
     if (a + 1 >= narg) error->all(FLERR, "fix fricgen/exact/viscous_cubic: keyword {} needs a value", arg[a]);
     const std::string key = arg[a];
+    if (key == "solvent") {
+      if (a + 2 >= narg) error->all(FLERR, "fix fricgen/exact/viscous_cubic: solvent needs two values, gamma and gamma_R");
+      gamma = utils::numeric(FLERR, arg[a + 1], false, lmp);
+      gamma_rot = utils::numeric(FLERR, arg[a + 2], false, lmp);
+      if (!(gamma >= 0.0 && gamma_rot >= 0.0))
+        error->all(FLERR, "fix fricgen/exact/viscous_cubic: solvent gamma and gamma_R must be >= 0, got {} and {}", gamma, gamma_rot);
+      a++;
+      continue;
+    }
     if (key == "noise") {
       noise_on = utils::logical(FLERR, arg[a + 1], false, lmp);
       continue;
@@ -607,9 +619,40 @@ template <typename Key> void FixFricgenViscousCubic::sort_by(size_t first, size_
   std::copy(scratch.begin(), scratch.end(), pairs.begin() + first);
 }
 
+// The engine's solvent step O (single_particle.kick_drift_solvent) on the owned atoms: the exact Ornstein-Uhlenbeck
+// update v <- c v + s xi, c = exp(-gamma dt / m), s = sqrt(kT (1 - c^2) / m), and its rotational twin with gamma_R
+// and I, the normals of the SOLVENT stream keyed on 6 (ID - 1) + component; then the owners' velocities and spins
+// to every ghost.
+void FixFricgenViscousCubic::solvent_step()
+{
+  double **v = atom->v, **omega = atom->omega;
+  const double *radius = atom->radius, *rmass = atom->rmass;
+  const tagint *tag = atom->tag;
+  const int *mask = atom->mask;
+  const double dt = update->dt;
+  const uint64_t key = stream_key(static_cast<uint64_t>(seed), static_cast<uint64_t>(update->ntimestep - 1), SOLVENT_STREAM);
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double inv_m = 1.0 / rmass[i], inv_i = 1.0 / (inertia * rmass[i] * (radius[i] * radius[i]));
+    const double c = std::exp(-gamma * inv_m * dt), cr = std::exp(-gamma_rot * inv_i * dt);
+    const double s = std::sqrt(kT * inv_m * (1.0 - c * c)), sr = std::sqrt(kT * inv_i * (1.0 - cr * cr));
+    const uint64_t first = 6 * static_cast<uint64_t>(tag[i] - 1);
+    v[i][0] = c * v[i][0] + s * ziggurat_normal(key, first);
+    v[i][1] = c * v[i][1] + s * ziggurat_normal(key, first + 1);
+    omega[i][2] = cr * omega[i][2] + sr * ziggurat_normal(key, first + 2);
+    if (domain->dimension == 3) {
+      v[i][2] = c * v[i][2] + s * ziggurat_normal(key, first + 3);
+      omega[i][0] = cr * omega[i][0] + sr * ziggurat_normal(key, first + 4);
+      omega[i][1] = cr * omega[i][1] + sr * ziggurat_normal(key, first + 5);
+    }
+  }
+  comm->forward_comm(this);
+}
+
 void FixFricgenViscousCubic::post_force(int)
 {
   if (neighbor->ncalls != built) collect_candidates();
+  if (gamma > 0.0 || gamma_rot > 0.0) solvent_step();
   double **x = atom->x;
   const double *radius = atom->radius;
   const uint64_t key = stream_key(static_cast<uint64_t>(seed), static_cast<uint64_t>(update->ntimestep - 1), CONTACT_STREAM);
