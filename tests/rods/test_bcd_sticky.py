@@ -85,11 +85,11 @@ def test_two_rods_on_a_ring_bond_with_baxter_weight():
 
 @pytest.fixture(scope="module")
 def baxter_runs():
-    """The default study (N = 50, L = 100, sigma = 0.5, U0 = 6, 16 rings, 0.25 + 1.25 time units) at
+    """The default study (N = 50, L = 100, sigma = 0.5, U0 = 6, 16 rings, 0.25 + 1.25 time units; 20 000 sweeps) at
     dt = 1e-4 for gamma = 1 and 10 (44 % of the pairs bonded), and gamma = 10 run as 5: the sojourn rate twice too high."""
 
     def run(gamma, simulated):
-        config = rod_config(gamma=gamma, eps=0.0, dt=1e-4, seed=1)
+        config = rod_config(gamma=gamma, eps=0.0, dt=1e-4, seed=1, start_sweeps=20_000)  # sticky rings relax slowly in MC
         simulation = RodSimulation(config.replace(gamma=simulated))
         simulation.equilibrate(0.25)
         return deviations(simulation.run(12_500), exact_profile(config))
@@ -107,6 +107,6 @@ def test_baxter_profiles_within_error_at_dt_1e_4(baxter_runs, gamma):
 
 def test_a_wrong_sojourn_is_caught(baxter_runs):
     """The negative control: bonds that break twice as often (gamma / 2 in q) miss the profile and the
-    bonded density (counted with that gamma) by far more than their errors."""
+    shape of the bonded density (counted with that gamma) by far more than their errors."""
     figures = baxter_runs["10 as 5"]
-    assert figures["chi2_per_dof"] > 5.0 and abs(figures["contact_ratio"] - 1) > 5 * figures["contact_ratio_err"], figures
+    assert figures["chi2_per_dof"] > 5.0 and figures["contact_chi2_per_dof"] > 5.0, figures

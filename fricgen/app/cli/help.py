@@ -74,7 +74,7 @@ ROD_HELP = {
     "drive": "constant force on every rod, in kT per wavelength",
     "gamma": "Baxter stickiness, dimensionless (0: hard rods)",
     "p": "exponent of the delta_eps representation (B-31), dimensionless",
-    "eps": "range of the delta_eps representation (B-31), in wavelengths",
+    "eps": "range of the delta_eps representation (B-31), in wavelengths (0: Baxter's limit, a sticky boundary)",
     "pair": "a generated pair potential V(r) between neighbours instead of the sticky contact (e.g. wca)",
     "pair_params": "parameters of the pair potential, repeatable (default: none)",
     "pair_range": "gap beyond sigma where the pair potential ends, in wavelengths (< sigma)",
