@@ -29,10 +29,10 @@ from fricgen.derive.law.catalogues import BUILT_IN
 FIX = "fix             contact all fricgen/exact/coulomb_newton ${kT} ${seed} gamma_f 6.0 kappa_f 5.0\n"
 
 
-def inputs(folder: Path, work: Path) -> dict[str, str]:
-    """The exact template (a 200-step warm-up first) and its explicit twin."""
+def inputs(folder: Path, work: Path, warmup: str = "200") -> dict[str, str]:
+    """The exact template (a warm-up of ``warmup`` steps first, a number or a variable) and its explicit twin."""
     template = (folder / "in.coulomb_newton_2d_exact").read_text()
-    template = template.replace("run             ${nrun}", "run             200\nrun             ${nrun}")
+    template = template.replace("run             ${nrun}", f"run             {warmup}\nrun             ${{nrun}}")
     if FIX not in template:
         raise RuntimeError("in.coulomb_newton_2d_exact has no fix line as expected: regenerate it (fricgen lammps coulomb_newton)")
     explicit = template.replace(FIX, "").replace("pair_modify     shift yes\n", "")

@@ -47,20 +47,37 @@ def plugin_input(folder: Path) -> str:
     return str(folder / "in.plugin")
 
 
-def lammps_rate(lammps, script: str, ranks: int, steps: int, extra: list[str], cwd: Path) -> float:
+def lammps_output(lammps, script: str, ranks: int, steps: int, extra: list[str], cwd: Path) -> str:
+    """The screen output of LAMMPS running ``script`` (seed 1000, nrun ``steps``, the variables of ``extra``) on ``ranks`` ranks."""
     command = [*lammps.command(ranks), "-in", script, "-var", "seed", "1000", "-var", "nrun", str(steps), "-log", "none", "-nocite", *extra]
     done = subprocess.run(command, capture_output=True, text=True, env=lammps.environment(), cwd=cwd)
     if done.returncode != 0:
         raise RuntimeError(f"{' '.join(command)} failed:\n{(done.stdout + done.stderr)[-2000:]}")
-    seconds, _, count, atoms = LOOP.findall(done.stdout)[-1]
+    return done.stdout
+
+
+def loop_rate(output: str) -> float:
+    """Particle-steps per second of the last run of a LAMMPS output (its "Loop time" line)."""
+    seconds, _, count, atoms = LOOP.findall(output)[-1]
     return int(atoms) * int(count) / float(seconds)
 
 
-def engine(threads: int) -> Simulation:
+def lammps_rate(lammps, script: str, ranks: int, steps: int, extra: list[str], cwd: Path) -> float:
+    """Particle-steps per second of the last run of ``script`` (:func:`lammps_output`)."""
+    return loop_rate(lammps_output(lammps, script, ranks, steps, extra, cwd))
+
+
+PAPER = Thermostat(dt=1e-3)  # the paper's solvent
+
+
+def engine(threads: int, thermostat: Thermostat = PAPER) -> Simulation:
+    """fricgen's engine on the system of the module docstring (``thermostat``: the solvent and dt) on ``threads``
+    Numba threads (fixed: not the engine's own choice), after 200 steps."""
     numba.set_num_threads(threads)
     particles = Particles.spheres(N)
-    config = LangevinConfig(law=Law("coulomb_newton"), thermostat=Thermostat(dt=1e-3))
+    config = LangevinConfig(law=Law("coulomb_newton"), thermostat=thermostat)
     simulation = Simulation(config, particles, lattice_state(particles, 2, 0.6), load_law_kernels(config.law.name))
+    simulation.threads = threads
     simulation.advance(200)
     return simulation
 

@@ -7,13 +7,15 @@ then samples its own process with `perf record` while it
 runs SECONDS of steps, and prints the top of `perf report`. Inlined helpers count towards their
 caller (a parfor's body appears as `__numba_parfor_gufunc...`); libm's exp, expm1, erfc... appear by
 name. System: 2-D, N = 10 000, area fraction 0.6, WCA + solvent + Coulomb–Newton with its noise
-(pairwise), dt = 1e-3, one thread, after 1500 steps from the lattice.
+(pairwise), dt = 1e-3, one thread, after 1500 steps from the lattice; ``--no-solvent --dt 5e-3`` is the
+system of benchmarks/lammps_engine.py (the contacts alone as the thermostat).
 
-Run: python benchmarks/profile_step.py [SECONDS]   (needs `perf`, e.g. Debian's linux-perf)
+Run: python benchmarks/profile_step.py [SECONDS] [--dt DT] [--no-solvent]   (needs `perf`, e.g. Debian's linux-perf)
 """
 
 from __future__ import annotations
 
+import argparse
 import gc
 import os
 import shutil
@@ -56,12 +58,18 @@ def perf_map(path: str) -> int:
 
 
 def main() -> None:
-    seconds = float(sys.argv[1]) if len(sys.argv) > 1 else 8.0
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("seconds", nargs="?", type=float, default=8.0, help="seconds sampled")
+    parser.add_argument("--dt", type=float, default=1e-3)
+    parser.add_argument("--no-solvent", action="store_true", help="gamma = gamma_R = 0")
+    options = parser.parse_args()
+    seconds = options.seconds
     if shutil.which("perf") is None:
         sys.exit("perf is not installed (Debian: apt install linux-perf)")
     numba.set_num_threads(1)
     particles = Particles.spheres(10_000)
-    config = LangevinConfig(law=Law("coulomb_newton"), thermostat=Thermostat(dt=1e-3))
+    solvent = {"gamma": 0.0, "gamma_rot": 0.0} if options.no_solvent else {}
+    config = LangevinConfig(law=Law("coulomb_newton"), thermostat=Thermostat(dt=options.dt, **solvent))
     sim = Simulation(config, particles, lattice_state(particles, 2, 0.6), load_law_kernels("coulomb_newton"))
     sim.threads = 1
     sim.advance(1500)

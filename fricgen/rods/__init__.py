@@ -11,7 +11,8 @@ Public API::
     print(deviations(simulation.run(50_000), exact_profile(config)))
 
 Modules: ``config`` (RodModel, RodNumerics, RodSampling in a RodConfig), ``interactions`` (field and
-neighbour force kernels), ``bcd`` (the compiled step), ``mc`` (Monte Carlo start), ``simulation``
+neighbour force kernels), ``bcd`` (the compiled step), ``contact`` (its O(dt) contact layers), ``sticky``
+(Baxter's limit eps = 0 as a sticky boundary), ``mc`` (Monte Carlo start), ``simulation``
 (replicas and profiles), ``stability`` (the time step against the schemes' range), ``theory`` (exact
 transfer-operator profiles), ``comparison``. Imports only
 the kernel layer, the RNG and fricgen.schema/errors: never SymPy, the Langevin engine or the
