@@ -413,7 +413,9 @@ neighbor        0.3 bin
 neigh_modify    every 1 delay 0 check yes
 comm_modify     vel yes
 fix             1 all nve/sphere
-fix             contact all fricgen/exact/${law} $${kT} $${seed}${parameters} solvent $$(v_solvent*9.42477796076938) $$(v_solvent*3.141592653589793)
+variable        gamma equal v_solvent*9.42477796076938     # the paper's solvent: gamma = 3 pi, gamma_R = pi (R = 1/2)
+variable        gamma_r equal v_solvent*3.141592653589793
+fix             contact all fricgen/exact/${law} $${kT} $${seed}${parameters} solvent $${gamma} $${gamma_r}
 ${enforce}timestep        $${dt}
 compute         trot all temp/sphere dof rotate
 thermo_style    custom step temp c_trot pe press
