@@ -22,10 +22,8 @@ import tempfile
 from pathlib import Path
 
 from lammps_exact import inputs
-from lammps_plugin import N, engine, engine_rate, lammps_rate
+from lammps_plugin import N, built_plugin, engine, engine_rate, lammps_rate
 
-from fricgen.app.cli.lammps import build_plugin, locate_lammps, plugin_folder
-from fricgen.derive.law.catalogues import BUILT_IN
 from fricgen.langevin import Thermostat
 
 DT = 5e-3
@@ -36,10 +34,7 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--steps", type=int, default=1000, help="timed steps per measurement")
     options = parser.parse_args()
-    lammps = locate_lammps()
-    law_file = BUILT_IN.find("coulomb_newton")
-    folder = plugin_folder(law_file)
-    plugin = build_plugin(folder, lammps, law_file)
+    lammps, folder, plugin = built_plugin()
     work = Path(tempfile.mkdtemp(prefix="fricgen-bench-"))
     script = inputs(folder, work)["fix"]
     extra = ["-var", "plugin", str(plugin), "-var", "solvent", "0", "-var", "cells", "100", "-var", "dt", str(DT)]

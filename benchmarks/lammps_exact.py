@@ -21,10 +21,7 @@ import statistics
 import tempfile
 from pathlib import Path
 
-from lammps_plugin import lammps_rate
-
-from fricgen.app.cli.lammps import build_plugin, locate_lammps, plugin_folder
-from fricgen.derive.law.catalogues import BUILT_IN
+from lammps_plugin import built_plugin, lammps_rate
 
 FIX = "fix             contact all fricgen/exact/coulomb_newton ${kT} ${seed} gamma_f 6.0 kappa_f 5.0\n"
 
@@ -88,10 +85,7 @@ def main() -> None:
     if options.figure:
         phase_figure(options.figure)
         return
-    lammps = locate_lammps()
-    law_file = BUILT_IN.find("coulomb_newton")
-    folder = plugin_folder(law_file)
-    plugin = build_plugin(folder, lammps, law_file)
+    lammps, folder, plugin = built_plugin()
     work = Path(tempfile.mkdtemp(prefix="fricgen-bench-"))
     scripts = inputs(folder, work)
     extra = ["-var", "plugin", str(plugin), "-var", "solvent", "0", "-var", "cells", str(options.cells)]

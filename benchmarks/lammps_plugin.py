@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numba
 
-from fricgen.app.cli.lammps import build_plugin, locate_lammps, plugin_folder
+from fricgen.app.cli.lammps import Lammps, build_plugin, locate_lammps, plugin_folder
 from fricgen.derive.law.catalogues import BUILT_IN
 from fricgen.kernels import load_law_kernels
 from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, Thermostat, lattice_state
@@ -38,6 +38,13 @@ from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, Thermos
 N = 10_000
 PEERS = Path(__file__).resolve().parents[2] / "shared" / "peers" / "lammps"
 LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
+
+
+def built_plugin(law: str = "coulomb_newton") -> tuple[Lammps, Path, Path]:
+    """(LAMMPS, the plugin's folder, the built .so) of a built-in law, found and built as `fricgen lammps LAW --build` does."""
+    lammps, law_file = locate_lammps(), BUILT_IN.find(law)
+    folder = plugin_folder(law_file)
+    return lammps, folder, build_plugin(folder, lammps, law_file)
 
 
 def plugin_input(folder: Path) -> str:
@@ -94,9 +101,7 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--steps", type=int, default=1000, help="timed steps per measurement")
     options = parser.parse_args()
-    lammps = locate_lammps()
-    law_file = BUILT_IN.find("coulomb_newton")
-    plugin = build_plugin(plugin_folder(law_file), lammps, law_file)
+    lammps, _, plugin = built_plugin()
     work = Path(tempfile.mkdtemp(prefix="fricgen-bench-"))
     scripts = {"LAMMPS A": (str(PEERS / "in.A_2d_wca_langevin"), []), "plugin": (plugin_input(work), ["-var", "plugin", str(plugin)])}
     threads = [t for t in (1, 2) if t <= numba.config.NUMBA_NUM_THREADS]

@@ -31,10 +31,8 @@ from pathlib import Path
 
 import numpy as np
 from lammps_exact import inputs
-from lammps_plugin import lammps_output, lammps_rate
+from lammps_plugin import built_plugin, lammps_output, lammps_rate
 
-from fricgen.app.cli.lammps import build_plugin, locate_lammps, plugin_folder
-from fricgen.derive.law.catalogues import BUILT_IN
 from fricgen.langevin.analysis import Estimate, block_estimate
 
 KT = 1.0
@@ -94,10 +92,7 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=3, help="timed repeats at each integrator's dt")
     parser.add_argument("--steps", type=int, default=2000, help="timed steps per repeat")
     options = parser.parse_args()
-    lammps = locate_lammps()
-    law_file = BUILT_IN.find("coulomb_newton")
-    folder = plugin_folder(law_file)
-    plugin = build_plugin(folder, lammps, law_file)
+    lammps, folder, plugin = built_plugin()
     work = Path(tempfile.mkdtemp(prefix="fricgen-bench-"))
     scripts = inputs(folder, work, warmup="${nwarm}")
     n = options.cells**2
