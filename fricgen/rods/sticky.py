@@ -15,8 +15,8 @@ clusters of m and k rods (variance v = 2 D dt (1/m + 1/k), relative drift c dt, 
   h(y) / Q(alpha), h(y) = exp(2 alpha y) Phi(-y - alpha) + Phi(alpha - y), Q = int_0^inf h; the pieces
   keep their centre.
 
-For a constant drift the stationary gap law is p0 [exp(c g / D_rel) dg + gamma delta_0(dg)]. Of it, the free
-step kills (touches) the mass that would have ended at b with density p0 sqrt(v)^-1 h(b / sqrt v), in all
+For a constant drift the stationary gap law is p0 [exp(c g / D_rel) dg + gamma delta_0(dg)]. After the free
+step, which kills the paths that touch, the free law lacks the density p0 h(b / sqrt v) at b, in all
 p0 sqrt(v) Q(alpha): this is the emission that keeps the free law, and q is the balance B q = p0 sqrt(v) Q
 with B = gamma p0. So the scheme is exact for a pair with a constant drift at any dt (q <= 1), and
 Q(alpha) = alpha Phi(alpha) + phi(alpha) + erf(alpha / sqrt 2) / (2 alpha), 2 phi(0) at alpha = 0. Without
