@@ -27,6 +27,15 @@ def test_bcd_sticky_reports_the_representation_error(tmp_path, capsys):
     assert 0 < summary["representation_error_max"] < 0.05 and "contact_ratio" not in summary
 
 
+def test_bcd_baxter_limit_compares_the_bonded_density(tmp_path, capsys):
+    """--eps 0: the sticky boundary against the exact Baxter profile, its bonded density as the contact."""
+    args = ["bcd", "--n", "20", "--gamma", "10", "--eps", "0", "--time", "0.2", "--equilibrate", "0.2", "--out", str(tmp_path), "--json"]
+    assert main(args) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert "representation_error_max" not in summary and abs(summary["contact_ratio"] - 1) < 5 * summary["contact_ratio_err"]
+    assert summary["l1_dev_over_rho"] < 0.1 and summary["config"]["eps"] == 0
+
+
 def test_bcd_in_another_generated_field(tmp_path, capsys):
     args = ["bcd", "--field", "ratchet", "--field-param", "a=1.5", "--n", "20", "--time", "0.2", "--dt", "1e-4", "--out", str(tmp_path)]
     assert main([*args, "--json"]) == 0
