@@ -373,8 +373,15 @@ def engine_mode_steps(laws, name: str, dim: int, noise: bool, snapshots, kinds):
     return out
 
 
-@pytest.mark.parametrize("noise", [False, True], ids=["friction", "friction+noise"])
-@pytest.mark.parametrize(("name", "dim"), [("rolling_coulomb_newton", 2), ("rolling_coulomb_newton", 3), ("spinning_soft", 3)])
+@pytest.mark.parametrize(
+    ("name", "dim", "noise"),
+    [
+        ("rolling_coulomb_newton", 2, True),
+        ("rolling_coulomb_newton", 3, True),
+        ("rolling_coulomb_newton", 3, False),
+        ("spinning_soft", 3, True),
+    ],
+)
 def test_a_mode_laws_fix_is_the_engines_step(lammps, laws, tmp_path, name, dim, noise):
     """The fix of a rolling or spinning law (noise tables for spinning_soft): the engine's pairwise step of the mode,
     velocities untouched and spins to 1e-12 per step, for unequal radii and masses."""
