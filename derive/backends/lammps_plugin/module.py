@@ -36,7 +36,8 @@ from ...law.names import camel
 from ...noise.derivation import NoiseModel
 from ..printing import header
 from .code import amplitude_kernel, law_kernels, potential_kernels, slope_kernel, wca
-from .fix_code import exact_inputs, fix_files, plugin_fields
+from .fix_code import fix_files, plugin_fields
+from .fix_inputs import exact_inputs
 from .mode_code import mode_compute, mode_fields, ziggurat_code, ziggurat_support
 from .plugin_source import PLUGIN, PLUGIN_ABI
 from .support_code import support
