@@ -15,8 +15,25 @@ from .theory import HARD_RODS, Neighbours, RodProfile, rod_profile
 
 @dataclass(frozen=True)
 class RodProfiles:
-    """Profiles over one wavelength at bin centres x: rho, rho_2 at contact, their standard errors, and the
-    covariance of the contact estimates between bins (from the replicas; None: not known)."""
+    """Measured profiles over one wavelength at bin centres (:meth:`RodSimulation.run`).
+
+    Attributes
+    ----------
+    x : numpy.ndarray
+        The bin centres [lambda].
+    rho : numpy.ndarray
+        The density [1/lambda].
+    rho_err : numpy.ndarray
+        Its standard error, from the replicas.
+    contact : numpy.ndarray
+        The pair density at contact rho_2(x, x + sigma+) [1/lambda^2].
+    contact_err : numpy.ndarray
+        Its standard error.
+    steps : int
+        The sampled steps.
+    contact_cov : numpy.ndarray or None
+        The covariance of the contact estimates between bins (from the replicas); None: not known.
+    """
 
     x: np.ndarray
     rho: np.ndarray
@@ -31,15 +48,21 @@ def exact_profile(config: RodConfig) -> RodProfile:
     """The exact equilibrium (fricgen.rods.theory) of the model a RodConfig simulates, on a ring of its length;
     the grid (600 to 2400 points per wavelength) has sigma on a grid point.
 
-    Args:
-        config: the rods' configuration.
+    Parameters
+    ----------
+    config : RodConfig
+        The rods' configuration.
 
-    Returns:
+    Returns
+    -------
+    RodProfile
         The exact profile over one wavelength, with the O(1/L) correction of the ring.
 
-    Raises:
-        ConfigError: for an open line, a σ/λ that is no fraction k/m with 600 ≤ m ≤ 2400, or a density
-            too close to close packing for the theory in double precision (at model.n).
+    Raises
+    ------
+    ConfigError
+        For an open line, a σ/λ that is no fraction k/m with 600 ≤ m ≤ 2400, or a density
+        too close to close packing for the theory in double precision (at model.n).
     """
     c = config.model
     try:
@@ -84,14 +107,20 @@ def compressibility(config: RodConfig) -> float:
 def deviations(measured: RodProfiles, exact: RodProfile, contact: bool = True) -> dict[str, float | None]:
     """A measured profile against the exact one's bin means.
 
-    Args:
-        measured: the profiles of :meth:`RodSimulation.run`, with their errors from the replicas.
-        exact: the exact profile (:func:`exact_profile`).
-        contact: also compare the contact density ρ₂(x, x + σ⁺) (hard rods), over the bins where the
-            exact one exceeds 30 % of its maximum.
+    Parameters
+    ----------
+    measured : RodProfiles
+        The profiles of :meth:`RodSimulation.run`, with their errors from the replicas.
+    exact : RodProfile
+        The exact profile (:func:`exact_profile`).
+    contact : bool
+        Also compare the contact density ρ₂(x, x + σ⁺) (hard rods), over the bins where the
+        exact one exceeds 30 % of its maximum.
 
-    Returns:
-        ``max_abs_dev`` (``max |Δρ|``, in 1/λ), ``l1_dev_over_rho`` (``mean |Δρ| / ρ̄``), ``chi2_per_dof`` (χ²
+    Returns
+    -------
+    dict[str, float | None]
+        ``max_abs_dev`` (``max |Δρ|`` [1/lambda]), ``l1_dev_over_rho`` (``mean |Δρ| / ρ̄``), ``chi2_per_dof`` (χ²
         per bin); with ``contact``: ``contact_chi2_per_dof``, ``contact_ratio`` (measured / exact, summed
         over the bins) and ``contact_ratio_err`` (from ``measured.contact_cov`` where known: the bins of
         a ring are correlated), None where too few pairs were measured.

@@ -23,14 +23,45 @@ CONTACT_LAYERS = ("merge", "reflect", "bridge")
 
 @dataclass(frozen=True)
 class RodModel(Section):
-    """``n`` rods of length ``sigma`` on a ring of length ``length`` (an open line for inf) in the
-    external potential ``field`` (generated/potentials/<field>.py; default (U0/2) cos(2 pi x /
-    lambda), B-21) of amplitude ``U0`` (kT) and period ``wavelength``, its other parameters from
-    ``field_params``; thermal energy ``kT``, mobility ``mu``, a constant ``drive`` (kT / lambda);
-    between neighbours either the sticky contact (B-31/32) of stickiness ``gamma`` (0: hard rods),
-    exponent ``p`` and range ``eps`` (eps = 0: Baxter's limit B-29, a sticky boundary of each gap,
-    fricgen.rods.sticky), or the generated pair potential ``pair`` (B-28) with ``pair_params``, zero
-    beyond r = sigma + ``pair_range`` (pair_range < sigma)."""
+    """``[model]``: rods on a ring in an external field, with an interaction of neighbours (B-21, B-28..32).
+
+    Units: wavelength lambda = 1, diffusion coefficient D = 1, kT = 1 (docs/physics.md#units-and-symbols).
+
+    Attributes
+    ----------
+    n : int
+        The number of rods (at least 2).
+    length : float
+        The ring's length L [lambda]; inf for an open line.
+    sigma : float
+        The rod length [lambda].
+    U0 : float
+        The field's amplitude [kT]; the default field is U(x) = (U0/2) cos(2 pi x / lambda) (B-21).
+    wavelength : float
+        The field's period lambda [lambda].
+    field : str
+        The external potential (generated/potentials/<field>.py).
+    field_params : dict of str to float
+        The field's other parameters.
+    kT : float
+        The thermal energy [kT].
+    mu : float
+        The mobility [D/kT].
+    drive : float
+        A constant force on every rod [kT/lambda].
+    gamma : float
+        The stickiness of the sticky contact (B-31/32) [lambda]; 0: hard rods.
+    p : float
+        The exponent of the delta_eps representation (B-31) [1].
+    eps : float
+        Its range [lambda]; 0: Baxter's limit (B-29), a sticky boundary of each gap.
+    pair : str or None
+        A generated pair potential of neighbours (B-28) instead of the sticky contact.
+    pair_params : dict of str to float
+        Its parameters.
+    pair_range : float
+        It vanishes beyond r = sigma + pair_range [lambda] (pair_range < sigma).
+    """
 
     SECTION = "model"
     n: int = 50
@@ -113,21 +144,34 @@ class RodModel(Section):
 
     @property
     def diffusion(self) -> float:
+        """The diffusion coefficient D = mu kT [D] (the Einstein relation; 1 in these units)."""
         return self.mu * self.kT
 
     @property
     def mean_density(self) -> float:
+        """The mean density N / L [1/lambda]."""
         return self.n / self.length
 
 
 @dataclass(frozen=True)
 class RodNumerics(Section):
-    """Time step ``dt``, noise ``seed``, ``start_sweeps`` Monte Carlo sweeps of the equilibrium start
-    (fricgen.rods.mc), and the ``contact_layer`` that ends collisions within a step (fricgen.rods.contact):
-    "bridge" (bias O(dt), docs/physics-bcd-contact-layer.md), "reflect" (O(dt) away from contact) or BCD's
-    own "merge" (O(sqrt(dt)), docs/physics.md#brownian-cluster-dynamics). The default dt = 1e-4 keeps the
-    default study (N = 50, L = 100, U0 = 6, 16 rings, 1.25 time units) and the dense one (N = 140) within
-    error with the bridge layer; merge needs about 2.5e-6 there."""
+    """``[numerics]``: the time step, the seed, the equilibrium start and the contact layer.
+
+    Attributes
+    ----------
+    dt : float
+        The time step [lambda^2/D]. The default 1e-4 keeps the default study (N = 50, L = 100,
+        U0 = 6, 16 rings, 1.25 time units) and the dense one (N = 140) within error with the bridge
+        layer; merge needs about 2.5e-6 there.
+    seed : int
+        The noise seed.
+    start_sweeps : int
+        Monte Carlo sweeps of the equilibrium start (fricgen.rods.mc).
+    contact_layer : str
+        How a step ends collisions (fricgen.rods.contact): "bridge" (bias O(dt),
+        docs/physics-bcd-contact-layer.md), "reflect" (O(dt) away from contact) or BCD's own "merge"
+        (O(sqrt(dt)), docs/physics.md#brownian-cluster-dynamics).
+    """
 
     SECTION = "numerics"
     dt: float = 1e-4
@@ -153,9 +197,21 @@ class RodNumerics(Section):
 
 @dataclass(frozen=True)
 class RodSampling(Section):
-    """``replicas`` independent rings (the samples of the errors), ``bins`` per wavelength, and the gap
-    histogram of the contact density: ``gap_bins`` bins of width ``gap_width``, ``fit_bins`` of
-    them fitted beyond the BCD layer."""
+    """``[sampling]``: the replicas and the histograms of the density and of the contact density.
+
+    Attributes
+    ----------
+    replicas : int
+        Independent rings (the samples of the errors).
+    bins : int
+        Density bins per wavelength.
+    gap_width : float
+        The width of a gap-histogram bin [lambda].
+    gap_bins : int
+        The number of gap bins.
+    fit_bins : int
+        Gap bins fitted beyond the BCD layer for the contact density.
+    """
 
     SECTION = "sampling"
     replicas: int = 16
@@ -173,7 +229,24 @@ class RodSampling(Section):
 
 @dataclass(frozen=True)
 class RodConfig(Section):
-    """A BCD run: the model, its numerics and its sampling."""
+    """A BCD run: the model, its numerics and its sampling (build one with :func:`rod_config`).
+
+    Attributes
+    ----------
+    model : RodModel
+        The physics.
+    numerics : RodNumerics
+        The time step, seed, start and contact layer.
+    sampling : RodSampling
+        Replicas and histograms.
+
+    Examples
+    --------
+    >>> from fricgen.rods import rod_config
+    >>> config = rod_config(n=20, length=40.0, U0=4.0, replicas=2)
+    >>> config.model.mean_density, config.numerics.dt
+    (0.5, 0.0001)
+    """
 
     model: RodModel = field(default_factory=RodModel)
     numerics: RodNumerics = field(default_factory=RodNumerics)
@@ -222,20 +295,44 @@ class RodConfig(Section):
         )
 
     def contact_fit_bins(self) -> int:
-        """Gap bins that the contact density needs at this dt (fricgen.rods.simulation). bridge: the bin of
-        its local time at contact only. merge, reflect: that bin, the layer of width about 3 sqrt(4 D dt)
-        where their pair density is distorted, then two windows of fit_bins / 2."""
+        """Gap bins that the contact density needs at this dt (fricgen.rods.simulation).
+
+        bridge: the bin of its local time at contact only. merge, reflect: that bin, the layer of width
+        about 3 sqrt(4 D dt) where their pair density is distorted, then two windows of fit_bins / 2.
+
+        Returns
+        -------
+        int
+            The number of gap bins.
+        """
         if self.numerics.contact_layer == "bridge":
             return 1
         layer = 1 + math.ceil(3 * math.sqrt(4 * self.model.diffusion * self.numerics.dt) / self.sampling.gap_width)
         return layer + 2 * (self.sampling.fit_bins // 2)
 
     def replace(self, **changes) -> RodConfig:
-        """A copy with flat fields changed (e.g. ``dt``)."""
+        """A copy with flat fields changed.
+
+        Parameters
+        ----------
+        **changes
+            Fields by name (of any section), e.g. ``dt`` [lambda^2/D].
+
+        Returns
+        -------
+        RodConfig
+            The checked copy.
+        """
         return rod_config(**(self.as_flat() | changes))
 
     def as_flat(self) -> dict:
-        """All fields by name (the keywords of :func:`rod_config`)."""
+        """All fields by name.
+
+        Returns
+        -------
+        dict
+            The keywords of :func:`rod_config`.
+        """
         return {f.name: getattr(part, f.name) for part in (self.model, self.numerics, self.sampling) for f in dataclasses.fields(part)}
 
 
@@ -245,16 +342,23 @@ PARTS = (RodModel, RodNumerics, RodSampling)
 def rod_config(**values) -> RodConfig:
     """A RodConfig from flat keywords (each a field of RodModel, RodNumerics or RodSampling).
 
-    Args:
-        **values: fields by name, e.g. ``n``, ``length`` and ``sigma`` (in units of λ), ``U0`` (in kT),
-            ``dt`` (in λ²/D), ``replicas``; the others keep their defaults.
+    Parameters
+    ----------
+    **values
+        Fields by name, e.g. ``n``, ``length`` and ``sigma`` [lambda], ``U0`` [kT],
+        ``dt`` [lambda^2/D], ``replicas``; the others keep their defaults.
 
-    Returns:
+    Returns
+    -------
+    RodConfig
         The checked configuration.
 
-    Raises:
-        TypeError: for a keyword that is no field.
-        ConfigError: for a value its section refuses.
+    Raises
+    ------
+    TypeError
+        For a keyword that is no field.
+    ConfigError
+        For a value its section refuses.
     """
     fields = flat_fields(*PARTS)
     unknown = sorted(set(values) - set(fields))

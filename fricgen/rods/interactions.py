@@ -38,14 +38,20 @@ def field_kernels(model: RodModel) -> tuple[ModuleType, np.ndarray]:
     """The generated external potential of a configuration and its parameter values: U0 and lambda
     from U0 and wavelength, the others from field_params or its defaults.
 
-    Args:
-        model: the rods' model (``field``, ``U0`` in kT, ``wavelength``, ``field_params``).
+    Parameters
+    ----------
+    model : RodModel
+        The rods' model (``field``, ``U0`` [kT], ``wavelength``, ``field_params``).
 
-    Returns:
+    Returns
+    -------
+    tuple[ModuleType, np.ndarray]
         The generated module (``energy``, ``force``, ``force_field``) and its parameter values.
 
-    Raises:
-        ConfigError: when ``field`` names a pair potential, or a parameter is unknown or out of range.
+    Raises
+    ------
+    ConfigError
+        When ``field`` names a pair potential, or a parameter is unknown or out of range.
     """
     module = load_potential(model.field)
     if not hasattr(module, "force_field"):
@@ -58,11 +64,15 @@ def field_kernels(model: RodModel) -> tuple[ModuleType, np.ndarray]:
 def field_energy(model: RodModel) -> Callable[[np.ndarray], np.ndarray]:
     """U(x) of the configuration's field, for arrays of positions.
 
-    Args:
-        model: the rods' model.
+    Parameters
+    ----------
+    model : RodModel
+        The rods' model.
 
-    Returns:
-        A function from positions (in units of λ) to energies (in kT).
+    Returns
+    -------
+    Callable[[np.ndarray], np.ndarray]
+        A function from positions [lambda] to energies [kT].
     """
     module, params = field_kernels(model)
     return on_arrays(module.energy, params)
@@ -73,15 +83,21 @@ def pair_kernels(model: RodModel) -> tuple[ModuleType, np.ndarray, float]:
     V = 0, hard rods) unless ``pair`` names another generated pair potential (B-28), with kT from the
     config; that one is checked to vanish on [sigma + a, 2 sigma] (neighbours only interact).
 
-    Args:
-        model: the rods' model.
+    Parameters
+    ----------
+    model : RodModel
+        The rods' model.
 
-    Returns:
+    Returns
+    -------
+    tuple[ModuleType, np.ndarray, float]
         The generated module, its parameter values and the range a of the gap (V = 0 for
-        r ≥ σ + a), in units of λ.
+        r ≥ σ + a) [lambda].
 
-    Raises:
-        ConfigError: when ``pair`` names an external field, or its potential does not vanish beyond σ + a.
+    Raises
+    ------
+    ConfigError
+        When ``pair`` names an external field, or its potential does not vanish beyond σ + a.
     """
     c = model
     if c.pair is None:
@@ -103,15 +119,23 @@ def pair_kernels(model: RodModel) -> tuple[ModuleType, np.ndarray, float]:
 def sticky_force_max(gamma: float, p: float, eps: float, kT: float = 1.0, samples: int = 4001) -> float:
     """``max |f_p(r)|`` over the interaction range (B-32): the maximum over s = σ + ε − r in (0, ε].
 
-    Args:
-        gamma: Baxter's stickiness γ.
-        p: the exponent of the δ_ε representation (B-31).
-        eps: its range ε, in units of λ.
-        kT: the thermal energy.
-        samples: grid points in s.
+    Parameters
+    ----------
+    gamma : float
+        Baxter's stickiness γ [lambda].
+    p : float
+        The exponent of the δ_ε representation (B-31).
+    eps : float
+        Its range ε [lambda].
+    kT : float
+        The thermal energy [kT].
+    samples : int
+        Grid points in s.
 
-    Returns:
-        The largest force magnitude, in kT/λ.
+    Returns
+    -------
+    float
+        The largest force magnitude [kT/lambda].
     """
     s = np.linspace(eps / samples, eps, samples)
     return float(np.max(kT * gamma * p * s ** (p - 1) / (eps ** (p + 1) / (p + 1) + gamma * s**p)))
@@ -120,12 +144,17 @@ def sticky_force_max(gamma: float, p: float, eps: float, kT: float = 1.0, sample
 def best_exponent(eps: float, gamma: float = 1.0) -> float:
     """The exponent p > 1 minimising ``max |f_p|`` for given eps (the paper's Fig. 5: p ~ 2.95 at 0.05).
 
-    Args:
-        eps: the range ε of the δ_ε representation, in units of λ.
-        gamma: Baxter's stickiness γ.
+    Parameters
+    ----------
+    eps : float
+        The range ε of the δ_ε representation [lambda].
+    gamma : float
+        Baxter's stickiness γ [lambda].
 
-    Returns:
-        The exponent p, dimensionless.
+    Returns
+    -------
+    float
+        The exponent p [1].
     """
     from scipy.optimize import minimize_scalar
 
@@ -136,12 +165,17 @@ def stability_ratio(model: RodModel, dt: float) -> float:
     """μ max|f| dt / a of (B-33) for the neighbour force of range a (sticky: a = ε); the force is
     resolved when this is ≪ 1.
 
-    Args:
-        model: the rods' model.
-        dt: the time step, in units of λ²/D.
+    Parameters
+    ----------
+    model : RodModel
+        The rods' model.
+    dt : float
+        The time step [lambda^2/D].
 
-    Returns:
-        The ratio, dimensionless (0 for hard rods).
+    Returns
+    -------
+    float
+        The ratio [1] (0 for hard rods).
     """
     if model.hard_rods or model.sticky_boundary:  # the boundary (eps = 0) has no force to resolve
         return 0.0

@@ -48,11 +48,18 @@ CHUNK_MOVES = 1_000_000
 
 
 class RodSimulation:
-    """Independent replicas of one ring, started from equilibrium (Monte Carlo) and evolved by BCD.
+    """Independent replicas of one ring, started from equilibrium (Monte Carlo) and evolved by Brownian
+    cluster dynamics (BCD; docs/physics.md#brownian-cluster-dynamics).
 
-    ``positions`` (N or replicas x N, ordered, no overlaps): the start instead of free hard rods in equilibrium,
-    before the config's Monte Carlo sweeps; required on an open line (length = inf), which has no
-    Monte Carlo start and no profiles."""
+    Parameters
+    ----------
+    config : RodConfig
+        The run.
+    positions : numpy.ndarray, optional
+        The start [lambda] (N or replicas x N, ordered, no overlaps) instead of free hard rods in
+        equilibrium, before the config's Monte Carlo sweeps; required on an open line (length = inf),
+        which has no Monte Carlo start and no profiles.
+    """
 
     def __init__(self, config: RodConfig, positions: np.ndarray | None = None):
         self.config = config
@@ -91,8 +98,18 @@ class RodSimulation:
         return x
 
     def thermalize(self, sweeps: int) -> float:
-        """Metropolis sweeps (fricgen.rods.mc) towards the exact equilibrium of the configuration's model,
-        with no time step: the wells fill as in equilibrium at once. Returns the acceptance ratio."""
+        """Metropolis sweeps (fricgen.rods.mc) towards the exact equilibrium of the model, with no time step.
+
+        Parameters
+        ----------
+        sweeps : int
+            The number of sweeps.
+
+        Returns
+        -------
+        float
+            The acceptance ratio [1].
+        """
         seed = self.config.numerics.seed
         chunk = max(1, CHUNK_MOVES // self.config.model.n)
         accepted = 0.0
@@ -104,13 +121,30 @@ class RodSimulation:
         return accepted / max(1, sweeps)
 
     def equilibrate(self, duration: float, dt: float | None = None) -> None:
-        """Run ``duration`` time units without sampling, at time step ``dt`` (default: the config's)."""
+        """Run without sampling.
+
+        Parameters
+        ----------
+        duration : float
+            The time [lambda^2/D].
+        dt : float, optional
+            The time step [lambda^2/D]; None: the config's.
+        """
         dt = dt or self.config.numerics.dt
         self.advance(int(round(duration / dt)), dt=dt)
 
     def advance(self, steps: int, counts: tuple[np.ndarray, np.ndarray] | None = None, dt: float | None = None) -> None:
-        """Advance all replicas by ``steps`` steps of ``dt`` (default: the config's); ``counts`` =
-        (rods per replica and bin, gaps per replica, bin and gap bin) accumulate samples."""
+        """Advance all replicas.
+
+        Parameters
+        ----------
+        steps : int
+            The number of steps.
+        counts : tuple of numpy.ndarray, optional
+            (rods per replica and bin, gaps per replica, bin and gap bin), accumulated in place.
+        dt : float, optional
+            The time step [lambda^2/D]; None: the config's.
+        """
         numerics, sampling = self.config.numerics, self.config.sampling
         shape = (sampling.replicas, sampling.bins)
         counts = counts or (np.zeros(shape), np.zeros((*shape, sampling.gap_bins)))
@@ -128,11 +162,22 @@ class RodSimulation:
             self.step += chunk
 
     def run(self, steps: int) -> RodProfiles:
-        """Sample ``steps`` steps; the replicas are the independent samples of the errors.
+        """Sample the profiles; the replicas are the independent samples of the errors.
 
-        Within one ring the occupation of the wells changes only by hopping over the barriers (about
-        20 time units per rod at U0 = 6), longer than a typical run, so time blocks of one ring are not
-        independent; replicas started from independent equilibrium configurations are."""
+        Within one ring the occupation of the wells changes only by hopping over the barriers (about 20
+        time units per rod at U0 = 6), longer than a typical run, so time blocks of one ring are not
+        independent; replicas started from independent equilibrium configurations are.
+
+        Parameters
+        ----------
+        steps : int
+            The number of steps of ``config.numerics.dt``.
+
+        Returns
+        -------
+        RodProfiles
+            The density and contact density with their errors.
+        """
         m, c = self.config.model, self.config.sampling
         if m.open_line:
             raise ConfigError("model.length", "profiles need a ring of finite length", "on an open line use advance() and positions")
@@ -191,9 +236,27 @@ class RodSimulation:
 
 
 def extrapolate_to_zero_dt(coarse: RodProfiles, fine: RodProfiles, ratio: float, order: float = 0.5) -> RodProfiles:
-    """Remove a bias of O(dt^order) from runs at dt and dt / ratio: X(0) = (r X_fine - X_coarse) / (r - 1),
-    r = ratio^order (Richardson; errors and covariances of the independent runs added). order = RodNumerics.error_order: 1/2 for BCD's
-    merge layer, 1 for bridge and reflect."""
+    """Remove a bias of O(dt^order) from runs at dt and dt / ratio (Richardson).
+
+    X(0) = (r X_fine - X_coarse) / (r - 1) with r = ratio^order; the errors and covariances of the
+    independent runs are added.
+
+    Parameters
+    ----------
+    coarse : RodProfiles
+        The run at dt.
+    fine : RodProfiles
+        The run at dt / ratio.
+    ratio : float
+        The ratio of the time steps [1].
+    order : float
+        The bias order, ``RodNumerics.error_order``: 1/2 for BCD's merge layer, 1 for bridge and reflect.
+
+    Returns
+    -------
+    RodProfiles
+        The extrapolated profiles.
+    """
     r = ratio**order
 
     def combine(a, b):

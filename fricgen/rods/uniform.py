@@ -8,12 +8,17 @@ import numpy as np
 def tonks(mean_density: float, sigma: float) -> tuple[float, float]:
     """βP = ρ̄/(1 − ρ̄σ) and βμ_ch of the uniform hard-rod fluid (Tonks).
 
-    Args:
-        mean_density: ρ̄.
-        sigma: the rod length, ρ̄σ < 1.
+    Parameters
+    ----------
+    mean_density : float
+        The mean density ρ̄ [1/lambda].
+    sigma : float
+        The rod length σ [lambda], ρ̄σ < 1.
 
-    Returns:
-        (βP, βμ_ch): βP in units of ρ̄, βμ_ch dimensionless.
+    Returns
+    -------
+    tuple of float
+        (βP [1/lambda], βμ_ch [1]).
     """
     packing = mean_density * sigma
     return mean_density / (1 - packing), float(np.log(mean_density / (1 - packing)) + packing / (1 - packing))
@@ -23,13 +28,19 @@ def sticky_rods(mean_density: float, sigma: float, gamma: float) -> tuple[float,
     """(βP, βμ_ch) of Baxter's uniform sticky rods: βP (1 + γβP) = ρ̄/(1 − ρ̄σ),
     βμ_ch = βPσ + ln[βP/(1 + γβP)] (isobaric partition function).
 
-    Args:
-        mean_density: ρ̄.
-        sigma: the rod length, ρ̄σ < 1.
-        gamma: the stickiness γ.
+    Parameters
+    ----------
+    mean_density : float
+        The mean density ρ̄ [1/lambda].
+    sigma : float
+        The rod length σ [lambda], ρ̄σ < 1.
+    gamma : float
+        The stickiness γ [lambda].
 
-    Returns:
-        (βP, βμ_ch): βP in units of ρ̄, βμ_ch dimensionless.
+    Returns
+    -------
+    tuple of float
+        (βP [1/lambda], βμ_ch [1]).
     """
     a = mean_density / (1 - mean_density * sigma)
     pressure = (np.sqrt(1 + 4 * gamma * a) - 1) / (2 * gamma) if gamma > 0 else a
