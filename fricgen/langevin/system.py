@@ -30,12 +30,6 @@ class Particles:
         Moments of inertia I_i [m sigma^2].
     mobile : numpy.ndarray
         bool: whether a particle moves.
-
-    Examples
-    --------
-    >>> from fricgen.langevin import Particles
-    >>> Particles.spheres(2).inertia  # I = 2/5 m R^2 with R = 1/2
-    array([0.1, 0.1])
     """
 
     radius: np.ndarray
