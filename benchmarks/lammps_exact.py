@@ -23,7 +23,7 @@ from pathlib import Path
 
 from lammps_plugin import built_plugin, lammps_rate
 
-FIX = "fix             contact all fricgen/exact/coulomb_newton ${kT} ${seed} gamma_f 6.0 kappa_f 5.0\n"
+FIX = "fix             contact all fricgen/exact/coulomb_newton ${kT} ${seed} gamma_f 6.0 kappa_f 5.0 solvent ${gamma} ${gamma_r}\n"
 
 
 def inputs(folder: Path, work: Path, warmup: str = "200") -> dict[str, str]:
