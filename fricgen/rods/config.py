@@ -165,8 +165,9 @@ class RodNumerics(Section):
         layer; merge needs about 2.5e-6 there.
     seed : int
         The noise seed.
-    start_sweeps : int
-        Monte Carlo sweeps of the equilibrium start (fricgen.rods.mc).
+    start_sweeps : int or None
+        Monte Carlo sweeps of the equilibrium start (fricgen.rods.mc); None: 2000, or 20 000 for the
+        sticky boundary (eps = 0), whose rings relax slowly in Monte Carlo (RodConfig.start_sweeps).
     contact_layer : str
         How a step ends collisions (fricgen.rods.contact): "bridge" (bias O(dt),
         docs/physics-bcd-contact-layer.md), "reflect" (O(dt) away from contact) or BCD's own "merge"
@@ -176,7 +177,7 @@ class RodNumerics(Section):
     SECTION = "numerics"
     dt: float = 1e-4
     seed: int = 1
-    start_sweeps: int = 2000
+    start_sweeps: int | None = None
     contact_layer: str = "bridge"
 
     @property
@@ -187,8 +188,9 @@ class RodNumerics(Section):
     def __post_init__(self):
         self.require_positive("dt")
         self.require(0 <= self.seed < 2**63, "seed", f"must be an integer in [0, 2^63), got {self.seed}", "give a non-negative integer")
-        self.require(self.start_sweeps >= 0, "start_sweeps", f"must be >= 0, got {self.start_sweeps}", "give 0 or more")
-        self.require_steps("start_sweeps", self.start_sweeps)
+        if self.start_sweeps is not None:
+            self.require(self.start_sweeps >= 0, "start_sweeps", f"must be >= 0, got {self.start_sweeps}", "give 0 or more")
+            self.require_steps("start_sweeps", self.start_sweeps)
         layers = ", ".join(CONTACT_LAYERS)
         self.require(
             self.contact_layer in CONTACT_LAYERS, "contact_layer", f"must be one of {layers}, got {self.contact_layer!r}", "give bridge"
@@ -254,7 +256,7 @@ class RodConfig(Section):
 
     def __post_init__(self):
         self.require(
-            not (self.model.open_line and self.numerics.start_sweeps > 0),
+            not (self.model.open_line and self.start_sweeps > 0),
             "numerics.start_sweeps",
             "an open line (length = inf) has no equilibrium to start from",
             "set start_sweeps = 0 and give positions",
@@ -309,6 +311,15 @@ class RodConfig(Section):
             return 1
         layer = 1 + math.ceil(3 * math.sqrt(4 * self.model.diffusion * self.numerics.dt) / self.sampling.gap_width)
         return layer + 2 * (self.sampling.fit_bins // 2)
+
+    @property
+    def start_sweeps(self) -> int:
+        """The Monte Carlo sweeps of the start: numerics.start_sweeps, or by default 2000, and 20 000 for the
+        sticky boundary (with 2000 its gamma = 1 profiles were 2-3 errors per bin off,
+        docs/physics-bcd-sticky-boundary.md)."""
+        if self.numerics.start_sweeps is not None:
+            return self.numerics.start_sweeps
+        return 20_000 if self.model.sticky_boundary else 2000
 
     def replace(self, **changes) -> RodConfig:
         """A copy with flat fields changed.

@@ -74,7 +74,7 @@ class RodSimulation:
             raise ConfigError("positions", "an open line (length = inf) needs initial positions", "give them")
         self.positions = self._initial() if positions is None else self._given(positions)
         self.step, self.sweep = 0, 0
-        self.acceptance = self.thermalize(config.numerics.start_sweeps)
+        self.acceptance = self.thermalize(config.start_sweeps)
 
     def _initial(self) -> np.ndarray:
         """Rods with Gamma-distributed gaps (fricgen.rods.mc.free_rods) whose long density waves have the exact

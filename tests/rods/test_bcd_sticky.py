@@ -110,3 +110,11 @@ def test_a_wrong_sojourn_is_caught(baxter_runs):
     shape of the bonded density (counted with that gamma) by far more than their errors."""
     figures = baxter_runs["10 as 5"]
     assert figures["chi2_per_dof"] > 5.0 and figures["contact_chi2_per_dof"] > 5.0, figures
+
+
+def test_the_sticky_boundary_starts_from_20000_sweeps_by_default():
+    """2000 Monte Carlo sweeps leave sticky rings 2-3 errors per bin off at gamma = 1: the boundary's default is 20 000,
+    hard rods keep 2000, and a given number is kept."""
+    assert rod_config(gamma=1.0, eps=0.0).start_sweeps == 20_000
+    assert rod_config().start_sweeps == 2000
+    assert rod_config(gamma=1.0, eps=0.0, start_sweeps=300).start_sweeps == 300

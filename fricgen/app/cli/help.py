@@ -80,7 +80,7 @@ ROD_HELP = {
     "pair_range": "gap beyond sigma where the pair potential ends, in wavelengths (< sigma)",
     "dt": "time step, in wavelength^2/D (bias O(dt) with the bridge layer, O(sqrt(dt)) with merge)",
     "seed": "noise seed, an integer",
-    "start_sweeps": "Monte Carlo sweeps of the equilibrium start",
+    "start_sweeps": "Monte Carlo sweeps of the equilibrium start (none: 2000, or 20000 for the sticky boundary eps = 0)",
     "contact_layer": "how a step ends collisions: bridge (Brownian-bridge push, O(dt)), reflect (elastic) or merge (BCD's, O(sqrt(dt)))",
     "replicas": "independent rings run in parallel, the samples of the errors",
     "bins": "bins over one wavelength",
