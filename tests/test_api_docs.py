@@ -106,21 +106,6 @@ def problems(obj) -> list[str]:
     return missing
 
 
-#: Public callables of fricgen/rods/theory.py, whose numpy-style docstrings (about 130 lines) do not fit
-#: under the 400-line rule (tests/test_layers.py) until the module is split. Each must still lack them:
-#: a name is removed here once it is documented.
-PENDING = {
-    "fricgen.rods.Neighbours",
-    "fricgen.rods.Neighbours.weight",
-    "fricgen.rods.RodProfile",
-    "fricgen.rods.RodProfile.at",
-    "fricgen.rods.RodProfile.bin_means",
-    "fricgen.rods.percus_residual",
-    "fricgen.rods.rod_profile",
-    "fricgen.rods.sticky_residual",
-}
-
-
 def test_every_public_callable_documents_its_parameters_and_returns():
     public = documented()
     assert {
@@ -130,8 +115,6 @@ def test_every_public_callable_documents_its_parameters_and_returns():
         "fricgen.langevin.Simulation.run",
     } <= public.keys()
     lacking = {name: problem for name, obj in public.items() if (problem := problems(obj))}
-    assert PENDING <= lacking.keys(), f"documented now, remove from PENDING: {sorted(PENDING - lacking.keys())}"
-    lacking = {name: problem for name, problem in lacking.items() if name not in PENDING}
     assert not lacking, f"{len(lacking)} of {len(public)} public callables lack docs:\n" + "\n".join(
         f"{n}: {p}" for n, p in lacking.items()
     )

@@ -26,8 +26,10 @@ import fricgen.compiled  # noqa: F401  (first: sets Numba up before anything imp
 from .comparison import deviations, exact_profile
 from .config import RodConfig, RodModel, RodNumerics, RodSampling, rod_config
 from .interactions import best_exponent, field_energy, field_kernels, pair_kernels, stability_ratio, sticky_force_max
+from .neighbours import HARD_RODS, Neighbours
+from .residuals import percus_residual, sticky_residual
 from .simulation import RodProfiles, RodSimulation, extrapolate_to_zero_dt
-from .theory import HARD_RODS, Neighbours, RodProfile, percus_residual, rod_profile, sticky_residual
+from .theory import RodProfile, rod_profile
 from .uniform import sticky_rods, tonks
 
 __all__ = [

@@ -10,7 +10,8 @@ import numpy as np
 from ..errors import ConfigError
 from .config import RodConfig
 from .interactions import field_energy, on_arrays, pair_kernels
-from .theory import HARD_RODS, Neighbours, RodProfile, rod_profile
+from .neighbours import HARD_RODS, Neighbours
+from .theory import RodProfile, rod_profile
 
 
 @dataclass(frozen=True)

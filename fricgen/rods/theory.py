@@ -38,12 +38,36 @@ from scipy.optimize import brentq
 from scipy.sparse.linalg import ArpackError, LinearOperator, eigs
 
 from ..errors import ConfigError
+from .neighbours import HARD_RODS, Neighbours, PairWeight
 
 
 @dataclass(frozen=True)
 class RodProfile:
-    """Equilibrium over one period: grid x, rho(x), eta(x) = int_{x-sigma}^x rho, rho_2(x, x + sigma+),
-    beta mu_ch and beta P."""
+    """The exact equilibrium of rods over one period (:func:`rod_profile`).
+
+    Attributes
+    ----------
+    x : numpy.ndarray
+        The grid [lambda].
+    rho : numpy.ndarray
+        The density rho(x) [1/lambda].
+    eta : numpy.ndarray
+        The local packing fraction eta(x) = int_{x-sigma}^x rho dy [1].
+    contact : numpy.ndarray
+        The pair density at contact rho_2(x, x + sigma+) [1/lambda^2].
+    beta_mu : float
+        The chemical potential beta mu_ch [1].
+    beta_pressure : float
+        The pressure beta P [1/lambda].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from fricgen.rods import rod_profile, tonks
+    >>> flat = rod_profile(lambda x: np.zeros_like(x), sigma=0.5, mean_density=1.0)
+    >>> print(f"{flat.beta_pressure:.6f} {tonks(1.0, 0.5)[0]:.6f}")  # no field: Tonks, beta P = rho/(1 - rho sigma)
+    2.000000 2.000000
+    """
 
     x: np.ndarray
     rho: np.ndarray
@@ -53,13 +77,39 @@ class RodProfile:
     beta_pressure: float
 
     def at(self, points: np.ndarray, field: str = "rho") -> np.ndarray:
-        """Periodic linear interpolation of a field at arbitrary points."""
+        """Periodic linear interpolation of a field at arbitrary points.
+
+        Parameters
+        ----------
+        points : numpy.ndarray
+            Positions [lambda].
+        field : str
+            "rho", "eta" or "contact".
+
+        Returns
+        -------
+        numpy.ndarray
+            The field's values there, in its units.
+        """
         period = self.x[1] * self.x.size
         values = getattr(self, field)
         return np.interp(np.mod(points, period), np.append(self.x, period), np.append(values, values[0]))
 
     def bin_means(self, bins: int, field: str = "rho") -> np.ndarray:
-        """Means of a field over ``bins`` equal bins of one period (to compare with histograms)."""
+        """Means of a field over equal bins of one period (to compare with histograms).
+
+        Parameters
+        ----------
+        bins : int
+            The number of bins.
+        field : str
+            "rho", "eta" or "contact".
+
+        Returns
+        -------
+        numpy.ndarray
+            One mean per bin, in the field's units.
+        """
         period = self.x[1] * self.x.size
         edges = np.linspace(0.0, period, bins + 1)
         return np.array([self.at(np.linspace(a, b, 41), field).mean() for a, b in zip(edges, edges[1:])])
@@ -122,19 +172,6 @@ def _hat_integrals(a: float) -> tuple[float, float, float, float]:
     phi = (2 * np.cosh(a) - 2) / a**2
     psi = (a - 1 + np.exp(-a)) / a**2
     return phi, 2 * np.sinh(a) / a**2 - 2 * phi / a, psi, -np.expm1(-a) / a**2 - 2 * psi / a
-
-
-@dataclass(frozen=True)
-class PairWeight:
-    """The pair weight beyond the hard core: W(sigma + g) = 1 + excess(g) for 0 <= g < reach
-    (excess(g) = exp[-beta V(sigma + g)] - 1, vectorised in g), plus Baxter's bond gamma delta(r - sigma)."""
-
-    excess: Callable[[np.ndarray], np.ndarray] | None = None
-    reach: float = 0.0
-    bond: float = 0.0
-
-
-HARD_CORE = PairWeight()
 
 
 def _excess_weights(grid: Grid, beta_p: float, weight: PairWeight) -> tuple[np.ndarray, np.ndarray]:
@@ -273,42 +310,6 @@ def _infinite_profile(beta_u: np.ndarray, grid: Grid, mean_density: float, weigh
     return RodProfile(grid.x, rho, grid.window(rho, False), contact, float(beta_mu), chain.beta_p), chain
 
 
-@dataclass(frozen=True)
-class Neighbours:
-    """The interaction of neighbouring rods beyond the hard core: none (hard rods), the sticky contact
-    of stickiness ``gamma`` > 0 in the delta_eps representation (B-31/32, exponent ``p``, range
-    ``eps``; what BCD simulates) or, with ``eps=None``, Baxter's limit (B-29); or a continuous pair
-    potential ``pair`` V(r) of neighbours on sigma <= r < sigma + ``pair_range`` (zero beyond)."""
-
-    gamma: float = 0.0
-    eps: float | None = None
-    p: float = 3.0
-    pair: Callable[[np.ndarray], np.ndarray] | None = None
-    pair_range: float | None = None
-
-    def weight(self, sigma: float, wavelength: float, kT: float) -> PairWeight:
-        """The pair weight W - 1 of these neighbours; ConfigError for inconsistent values."""
-        gamma, eps, p, pair, pair_range = self.gamma, self.eps, self.p, self.pair, self.pair_range
-        if gamma < 0 or (eps is not None and not 0 < eps < min(sigma, wavelength)) or p <= 1:
-            raise ConfigError("rod_profile", "need gamma >= 0, 0 < eps < min(sigma, wavelength) and p > 1")
-        if pair is not None:
-            if gamma > 0:
-                raise ConfigError("rod_profile", "give a pair potential or sticky rods (gamma > 0), not both")
-            if pair_range is None or not 0 < pair_range < min(sigma, wavelength):
-                raise ConfigError(
-                    "rod_profile", f"the pair potential needs its range a (V = 0 beyond sigma + a) with 0 < a < sigma, got {pair_range}"
-                )
-            return PairWeight(lambda g: np.expm1(-np.asarray(pair(sigma + g), dtype=float) / kT), pair_range)
-        if gamma == 0:
-            return HARD_CORE
-        if eps is None:
-            return PairWeight(bond=gamma)
-        return PairWeight(lambda g: gamma * (p + 1) / eps ** (p + 1) * (eps - g) ** p, eps)
-
-
-HARD_RODS = Neighbours()
-
-
 def rod_profile(
     potential: Callable[[np.ndarray], np.ndarray],
     sigma: float,
@@ -321,22 +322,35 @@ def rod_profile(
 ) -> RodProfile:
     """Exact equilibrium profile of rods of length σ at mean density ρ̄ in U(x), by the transfer operator.
 
-    Args:
-        potential: U(x) in energy units, for arrays of positions.
-        sigma: the rod length σ (lengths in any one unit, λ = 1 in fricgen.rods).
-        mean_density: ρ̄, with ρ̄σ < 1.
-        wavelength: the period λ of U.
-        kT: the thermal energy.
-        neighbours: the interaction beyond the hard core (default: hard rods).
-        points: grid points per wavelength (σ must lie on a grid point).
-        ring_length: L of a ring of fixed N = ρ̄L, for its O(1/L) correction; None: the infinite line.
+    Parameters
+    ----------
+    potential : Callable[[np.ndarray], np.ndarray]
+        U(x) [kT], for arrays of positions [lambda].
+    sigma : float
+        The rod length σ [lambda] (any one length unit works; λ = 1 in fricgen.rods).
+    mean_density : float
+        The mean density ρ̄ [1/lambda], with ρ̄σ < 1.
+    wavelength : float
+        The period λ of U [lambda].
+    kT : float
+        The thermal energy [kT].
+    neighbours : Neighbours
+        The interaction beyond the hard core (default: hard rods).
+    points : int
+        Grid points per wavelength (σ must lie on a grid point).
+    ring_length : float | None
+        L of a ring of fixed N = ρ̄L, for its O(1/L) correction; None: the infinite line.
 
-    Returns:
+    Returns
+    -------
+    RodProfile
         ρ(x), the pair density at contact ρ₂(x, x + σ⁺) (including W(σ⁺); for Baxter without the
         bonded delta weight), βμ_ch and βP.
 
-    Raises:
-        ConfigError: at or beyond close packing (ρ̄σ ≥ 1).
+    Raises
+    ------
+    ConfigError
+        At or beyond close packing (ρ̄σ ≥ 1).
     """
     if not 0 < mean_density * sigma < 1:
         raise ConfigError("rod_profile", f"need 0 < rho_bar sigma < 1 (close packing), got {mean_density * sigma}")
@@ -354,36 +368,3 @@ def rod_profile(
     contact_curvature = (above.contact - 2 * profile.contact + below.contact) / step**2
     contact = profile.contact - chi / (2 * ring_length) * contact_curvature
     return RodProfile(grid.x, rho, grid.window(rho, False), contact, profile.beta_mu, profile.beta_pressure)
-
-
-def percus_residual(profile: RodProfile, potential: Callable[[np.ndarray], np.ndarray], sigma: float, kT: float = 1.0) -> np.ndarray:
-    """Euler–Lagrange equation of Percus's hard-rod functional (B-20b), zero at equilibrium:
-    ln ρ(x) − ln(1 − η(x)) − βμ_ch + βU(x) + ∫_x^{x+σ} ρ/(1 − η) dy on the grid of ``profile`` (a
-    hard-rod :func:`rod_profile` in ``potential`` U(x), rod length ``sigma``), dimensionless."""
-    grid = Grid(profile.x[1] * profile.x.size, profile.x.size, sigma)
-    phi = profile.rho / (1 - profile.eta)
-    return np.log(phi) - profile.beta_mu + potential(profile.x) / kT + grid.window(phi, True)
-
-
-def sticky_residual(
-    profile: RodProfile, potential: Callable[[np.ndarray], np.ndarray], sigma: float, gamma: float, kT: float = 1.0
-) -> np.ndarray:
-    """The functional derivative (B-34a..c) of the sticky-rod functional, zero at equilibrium, on the
-    grid of ``profile`` (Baxter's rods of length ``sigma`` and stickiness ``gamma`` in ``potential``
-    U(x)), dimensionless."""
-    grid = Grid(profile.x[1] * profile.x.size, profile.x.size, sigma)
-    rho, eta = profile.rho, profile.eta
-    ahead, gap_ahead = grid.shift(rho), 1 - grid.shift(eta)  # rho(x + sigma), 1 - eta(x + sigma)
-    difference = (ahead - rho) / gap_ahead
-    k_hat = (-(1 - gamma * difference) + np.sqrt((1 - gamma * difference) ** 2 + 4 * gamma * ahead / gap_ahead)) / (2 * gamma)  # (B-34b)
-    k_hat_behind = np.roll(k_hat, grid.steps)  # K^(x - sigma)
-    k = k_hat_behind - (rho - np.roll(rho, grid.steps)) / (1 - eta)  # K(x) (B-34c)
-    root = np.sqrt(1 + 2 * gamma * (ahead + rho) / gap_ahead + gamma**2 * difference**2) / (2 * gamma)
-    return (
-        np.log(grid.shift(k) * k_hat_behind / rho)
-        + potential(profile.x) / kT
-        - profile.beta_mu
-        + 0.5 * np.log((1 - eta) * gap_ahead)
-        - sigma / (2 * gamma)
-        + grid.window(root, False)
-    )
