@@ -149,6 +149,16 @@ inline Cx propose(Cx x, double w, double r, double mu, double kT, double dt, con
   return uniform(key, 2) < alpha ? y : x;
 }
 
+// The move of a mode from x: the Metropolis-adjusted proposal with the noise, else the friction's decay
+// x e^(-mu (f/u) dt) (contact_step.update_pair and update_rolling).
+inline Cx mode_move(Cx x, double w, double r, double mu, double kT, double dt, const double *params, uint64_t key, int comps,
+                    int calculus, bool noise)
+{
+  if (!noise) return x * real(std::exp(-mu * mode_step(x, w, r, mu, kT, dt, params, comps, calculus).ratio * dt));
+  double rejection;
+  return propose(x, w, r, mu, kT, dt, params, key, comps, calculus, rejection);
+}
+
 // Orthonormal tangents e1, e2 of the contact plane (contact_step._tangents); in 2-D e1 = z x n, e2 = 0.
 inline void tangents(const double *n, bool three, double *e1, double *e2)
 {

@@ -29,15 +29,8 @@ void ${fix_cls}::step_pair(const Pair &p, uint64_t key)
   tangents(n, three, e1, e2);
   const Cx xm = {ux * e1[0] + uy * e1[1] + uz * e1[2], ux * e2[0] + uy * e2[1] + uz * e2[2]};
   const int comps = three ? 2 : 1;
-  const double dt = update->dt;
-  Cx y;
-  if (noise_on) {
-    double rejection;
-    y = propose(xm, w, r, mu, kT, dt, params, pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1),
-                comps, calculus, rejection);
-  } else {
-    y = xm * real(std::exp(-mu * mode_step(xm, w, r, mu, kT, dt, params, comps, calculus).ratio * dt));
-  }
+  const uint64_t pair = pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1);
+  const Cx y = mode_move(xm, w, r, mu, kT, update->dt, params, pair, comps, calculus, noise_on);
   if (same(y, xm)) return;
   const double jp = (xm.re - y.re) / mu, jq = (xm.im - y.im) / mu;    // impulse on i: u_perp -> u_perp - mu J
   const double jx = jp * e1[0] + jq * e2[0], jy = jp * e1[1] + jq * e2[1], jz = jp * e1[2] + jq * e2[2];
@@ -78,15 +71,8 @@ void $${fix_cls}::step_pair(const Pair &p, uint64_t key)
   const double inv_ii = 1.0 / (inertia * rmass[i] * (ri * ri)), inv_ik = 1.0 / (inertia * rmass[k] * (rk * rk));
   const double mu = reff * reff * (inv_ii + inv_ik);
   const double ox = omega[i][0] - omega[k][0], oy = omega[i][1] - omega[k][1], oz = omega[i][2] - omega[k][2];
-${mode_vector_code}  const double dt = update->dt;
-  Cx y;
-  if (noise_on) {
-    double rejection;
-    y = propose(xm, w, r, mu, kT, dt, params, pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1),
-                comps, calculus, rejection);
-  } else {
-    y = xm * real(std::exp(-mu * mode_step(xm, w, r, mu, kT, dt, params, comps, calculus).ratio * dt));
-  }
+${mode_vector_code}  const uint64_t pair = pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1);
+  const Cx y = mode_move(xm, w, r, mu, kT, update->dt, params, pair, comps, calculus, noise_on);
   if (same(y, xm)) return;
   const double jp = (y.re - xm.re) / mu, jq = (y.im - xm.im) / mu;
   double jx = jp * e1[0] + jq * e2[0], jy = jp * e1[1] + jq * e2[1], jz = jp * e1[2] + jq * e2[2];

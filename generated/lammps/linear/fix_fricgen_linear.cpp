@@ -385,6 +385,16 @@ inline Cx propose(Cx x, double w, double r, double mu, double kT, double dt, con
   return uniform(key, 2) < alpha ? y : x;
 }
 
+// The move of a mode from x: the Metropolis-adjusted proposal with the noise, else the friction's decay
+// x e^(-mu (f/u) dt) (contact_step.update_pair and update_rolling).
+inline Cx mode_move(Cx x, double w, double r, double mu, double kT, double dt, const double *params, uint64_t key, int comps,
+                    int calculus, bool noise)
+{
+  if (!noise) return x * real(std::exp(-mu * mode_step(x, w, r, mu, kT, dt, params, comps, calculus).ratio * dt));
+  double rejection;
+  return propose(x, w, r, mu, kT, dt, params, key, comps, calculus, rejection);
+}
+
 // Orthonormal tangents e1, e2 of the contact plane (contact_step._tangents); in 2-D e1 = z x n, e2 = 0.
 inline void tangents(const double *n, bool three, double *e1, double *e2)
 {
@@ -555,15 +565,8 @@ void FixFricgenLinear::step_pair(const Pair &p, uint64_t key)
   tangents(n, three, e1, e2);
   const Cx xm = {ux * e1[0] + uy * e1[1] + uz * e1[2], ux * e2[0] + uy * e2[1] + uz * e2[2]};
   const int comps = three ? 2 : 1;
-  const double dt = update->dt;
-  Cx y;
-  if (noise_on) {
-    double rejection;
-    y = propose(xm, w, r, mu, kT, dt, params, pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1),
-                comps, calculus, rejection);
-  } else {
-    y = xm * real(std::exp(-mu * mode_step(xm, w, r, mu, kT, dt, params, comps, calculus).ratio * dt));
-  }
+  const uint64_t pair = pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1);
+  const Cx y = mode_move(xm, w, r, mu, kT, update->dt, params, pair, comps, calculus, noise_on);
   if (same(y, xm)) return;
   const double jp = (xm.re - y.re) / mu, jq = (xm.im - y.im) / mu;    // impulse on i: u_perp -> u_perp - mu J
   const double jx = jp * e1[0] + jq * e2[0], jy = jp * e1[1] + jq * e2[1], jz = jp * e1[2] + jq * e2[2];
