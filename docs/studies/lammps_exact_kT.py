@@ -27,6 +27,7 @@ import numpy as np
 
 from fricgen.app.cli.lammps import build_plugin, emit_plugin, locate_lammps, plugin_folder
 from fricgen.derive.law.catalogues import BUILT_IN
+from fricgen.langevin.analysis import block_estimate
 
 RESULTS = Path(__file__).parent / "results" / "lammps_exact_kT.json"
 EQUILIBRATION = 2000
@@ -107,23 +108,20 @@ def temperatures(lammps, work: Path, text: str, ranks: int = 1) -> dict[str, lis
         text=True,
     )
     rows, reading = [], False
-    for line in done.stdout.splitlines():
+    for line in done.stdout.splitlines():  # the thermo tables' rows (Step Temp c_trot ...)
         words = line.split()
         if words[:3] == ["Step", "Temp", "c_trot"]:
             reading = True
-            continue
-        try:
-            rows.append([float(x) for x in words[:3]]) if reading else None
-        except ValueError:
-            reading = False
+        elif reading:
+            try:
+                rows.append([float(x) for x in words[:3]])
+            except ValueError:
+                reading = False
     table = np.array([r for r in rows if r[0] > EQUILIBRATION])
     if done.returncode != 0 or len(table) < 40 or not np.isfinite(table).all():
         return {"T_trans": [float("nan")] * 2, "T_rot": [float("nan")] * 2, "failed": (done.stdout + done.stderr)[-300:]}
-    out = {}
-    for name, column in (("T_trans", 1), ("T_rot", 2)):
-        blocks = table[: len(table) // 20 * 20, column].reshape(20, -1).mean(axis=1)
-        out[name] = [float(blocks.mean()), float(blocks.std(ddof=1) / np.sqrt(20))]
-    return out
+    estimates = {name: block_estimate(table[:, column]) for name, column in (("T_trans", 1), ("T_rot", 2))}
+    return {name: [e.mean, e.error] for name, e in estimates.items()}
 
 
 def verdict(result: dict) -> bool:

@@ -91,3 +91,8 @@ def thermo_table(output: str, columns: list[str]) -> np.ndarray:
             except ValueError:
                 reading = False
     return np.array(rows)
+
+
+def wrapped(position: np.ndarray, box: np.ndarray) -> np.ndarray:
+    """Positions wrapped into the periodic box (a box length of 0: that axis is not periodic, kept as it is)."""
+    return np.where(box > 0, np.mod(position, np.where(box > 0, box, 1.0)), position)

@@ -25,7 +25,7 @@ from fricgen.langevin.pairs import WCA_RANGE
 from fricgen.langevin.records import Bodies, Motion
 from fricgen.rng import CONTACT, SOLVENT, stream_key, ziggurat_normal
 
-from .helpers import data_file, dump_lines, read_dump, run, thermo_table, vectors
+from .helpers import data_file, dump_lines, read_dump, run, thermo_table, vectors, wrapped
 from .test_contact import BOX, DT, EPSILON, KT, LAWS, SEED, spheres
 
 STEPS = 6
@@ -45,8 +45,8 @@ def engine_steps(law: str, dim: int, noise: bool, snapshots, box_length: float =
         position = np.ascontiguousarray(vectors(snapshots[s + 1], "x", "y", "z"))
         velocity = np.ascontiguousarray(vectors(snapshots[s], "vx", "vy", "vz"))
         omega = np.ascontiguousarray(vectors(snapshots[s], "omegax", "omegay", "omegaz"))
-        wrapped = np.where(box > 0, np.mod(position, np.where(box > 0, box, 1.0)), position)
-        state = State(wrapped, velocity, omega, np.tile([1.0, 0.0, 0.0, 0.0], (n, 1)), box, dim)
+        inside = wrapped(position, box)
+        state = State(inside, velocity, omega, np.tile([1.0, 0.0, 0.0, 0.0], (n, 1)), box, dim)
         law_section = Law(name=law, calculus=calculus, contact_noise=noise, parameters=LAWS[law])
         config = LangevinConfig(law=law_section, thermostat=Thermostat(kT=KT, dt=DT), epsilon=EPSILON, seed=SEED)
         simulation = Simulation(config, particles, state, load_law_kernels(law))
@@ -58,7 +58,7 @@ def engine_steps(law: str, dim: int, noise: bool, snapshots, box_length: float =
         motion = Motion(state.position, state.velocity, state.omega, state.orientation)
         key = np.uint64(stream_key(SEED, s, CONTACT))
         owner = np.repeat(np.arange(n), np.diff(lists[0]))  # the particle of each slot (i of the pair i < k)
-        groups = [touching] if phases is None else [touching & (phases(wrapped)[owner] == p) for p in (0, 1)]
+        groups = [touching] if phases is None else [touching & (phases(inside)[owner] == p) for p in (0, 1)]
         for part in groups:
             contact_step(motion, bodies, dyn, simulation.couplings, (contact, slope, weight), lists, part, key)
         out[s + 1] = (state.velocity.copy(), state.omega.copy())

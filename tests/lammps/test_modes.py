@@ -36,7 +36,7 @@ from fricgen.langevin.pairs import PAIR_FIELDS, TERMS, WCA_RANGE, gather, pair_s
 from fricgen.langevin.records import Bodies, Motion
 from fricgen.rng import CONTACT, ROLLING, SPINNING, _word, pair_key, stream_key, ziggurat_normal
 
-from .helpers import data_file, dump_lines, read_dump, run, vectors
+from .helpers import data_file, dump_lines, read_dump, run, vectors, wrapped
 from .test_thermostat import temperatures
 
 BOX, SEED, KT, DT, EPSILON = 10.0, 77, 1.3, 2e-3, 1.2
@@ -354,8 +354,7 @@ def engine_mode_steps(laws, name: str, dim: int, noise: bool, snapshots, kinds):
     box = np.array([BOX, BOX, BOX if dim == 3 else 0.0])
     out = {}
     for s in range(FIX_STEPS):
-        position = np.mod(vectors(snapshots[s + 1], "x", "y", "z"), np.where(box > 0, box, 1.0)) * (box > 0)
-        position[:, 2] = vectors(snapshots[s + 1], "x", "y", "z")[:, 2] if dim == 2 else position[:, 2]
+        position = wrapped(vectors(snapshots[s + 1], "x", "y", "z"), box)
         velocity, omega = vectors(snapshots[s], "vx", "vy", "vz"), vectors(snapshots[s], "omegax", "omegay", "omegaz")
         state = State(*(np.ascontiguousarray(a) for a in (position, velocity, omega)), np.tile([1.0, 0.0, 0.0, 0.0], (n, 1)), box, dim)
         section = Law(name=name, calculus="ito", contact_noise=noise, parameters=PARAMETERS[name])

@@ -5,20 +5,29 @@ of 2-D by a spinning law's fix."""
 
 from string import Template
 
-SLIDING_PAIR = r"""// The engine's pairwise step of one pair (contact_step.update_pair) on the canonical copies i and c.
-void ${fix_cls}::step_pair(const Pair &p, uint64_t key)
-{
-  double **x = atom->x, **v = atom->v, **omega = atom->omega;
+#: What both pair steps start from: the pair's distance r, normal n (from i to its neighbour-list partner j),
+#: radii, the law's weight w and the inverse moments of inertia, on the canonical copies i and k.
+PAIR_GEOMETRY = """\
+  double **x = atom->x, **omega = atom->omega;
   const double *radius = atom->radius, *rmass = atom->rmass;
-  const bool three = domain->dimension == 3;
   const int i = p.i, k = p.c;
   const double dx = x[p.j][0] - x[i][0], dy = x[p.j][1] - x[i][1], dz = x[p.j][2] - x[i][2];
   const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
   const double n[3] = {dx / r, dy / r, dz / r};
   const double ri = radius[i], rk = radius[k], sigma = ri + rk;
   const double w = ${weight_call};
-  const double inv_mi = 1.0 / rmass[i], inv_mk = 1.0 / rmass[k];
   const double inv_ii = 1.0 / (inertia * rmass[i] * (ri * ri)), inv_ik = 1.0 / (inertia * rmass[k] * (rk * rk));
+"""
+
+SLIDING_PAIR = (
+    r"""// The engine's pairwise step of one pair (contact_step.update_pair) on the canonical copies i and c.
+void ${fix_cls}::step_pair(const Pair &p, uint64_t key)
+{
+"""
+    + PAIR_GEOMETRY
+    + r"""  double **v = atom->v;
+  const bool three = domain->dimension == 3;
+  const double inv_mi = 1.0 / rmass[i], inv_mk = 1.0 / rmass[k];
   const double mu = inv_mi + inv_mk + ri * ri * inv_ii + rk * rk * inv_ik;
   // u_perp = P (v_k - v_i) - (R_i w_i + R_k w_k) x n (F-4) as x = u_perp . (e1 + i e2): contact_step.contact_mode
   const double wx = ri * omega[i][0] + rk * omega[k][0], wy = ri * omega[i][1] + rk * omega[k][1];
@@ -51,24 +60,20 @@ void ${fix_cls}::step_pair(const Pair &p, uint64_t key)
 }
 
 """
+)
 
 #: The step of one pair by the law's mode: sliding (contact_step.update_pair), rolling and spinning
 #: (contact_step.update_rolling, with rolling_mode's mode vector).
 PAIR_STEP = {"sliding": SLIDING_PAIR}
 
-MODE_PAIR = Template(r"""// The engine's step of one pair's ${mode} mode (contact_step.update_rolling) on the canonical copies i and c:
+MODE_PAIR = Template(
+    r"""// The engine's step of one pair's ${mode} mode (contact_step.update_rolling) on the canonical copies i and c:
 // x = ${mode_vector}, mu_m = R_eff^2 (1/I_i + 1/I_k), J = (y - x) / mu_m; only the spins change.
 void $${fix_cls}::step_pair(const Pair &p, uint64_t key)
 {
-  double **x = atom->x, **omega = atom->omega;
-  const double *radius = atom->radius, *rmass = atom->rmass;
-  const int i = p.i, k = p.c;
-  const double dx = x[p.j][0] - x[i][0], dy = x[p.j][1] - x[i][1], dz = x[p.j][2] - x[i][2];
-  const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-  const double n[3] = {dx / r, dy / r, dz / r};
-  const double ri = radius[i], rk = radius[k], sigma = ri + rk, reff = ri * rk / sigma;
-  const double w = $${weight_call};
-  const double inv_ii = 1.0 / (inertia * rmass[i] * (ri * ri)), inv_ik = 1.0 / (inertia * rmass[k] * (rk * rk));
+"""
+    + PAIR_GEOMETRY.replace("$", "$$")
+    + r"""  const double reff = ri * rk / sigma;
   const double mu = reff * reff * (inv_ii + inv_ik);
   const double ox = omega[i][0] - omega[k][0], oy = omega[i][1] - omega[k][1], oz = omega[i][2] - omega[k][2];
 ${mode_vector_code}  const uint64_t pair = pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1);
@@ -86,7 +91,8 @@ ${impulse_code}  const int particles[2] = {i, k};
   }
   if (k >= atom->nlocal) touched[k] = 1;
 }
-""")
+"""
+)
 
 #: The mode vector of contact_step.rolling_mode as x (complex), its tangents e1, e2 and its components.
 ROLLING_VECTOR = """\

@@ -98,7 +98,7 @@ ${fix_cls}::${fix_cls}(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg),
     int k = 0;
     while (k < NPARAMS && key != PARAMETERS[k]) k++;
     if (k == NPARAMS || k == SIGMA_INDEX)
-      error->all(FLERR, "fix fricgen/exact/${law}: unknown keyword {} (noise, calculus, inertia or a law parameter: "
+      error->all(FLERR, "fix fricgen/exact/${law}: unknown keyword {} (noise, calculus, inertia, solvent or a law parameter: "
                  "${parameter_list})", key);
     const double value = utils::numeric(FLERR, arg[a + 1], false, lmp);
     const double *range = RANGES[k];
@@ -214,8 +214,8 @@ template <typename Key> void ${fix_cls}::sort_by(size_t first, size_t last, int 
 
 // The engine's solvent step O (single_particle.kick_drift_solvent) on the owned atoms: the exact Ornstein-Uhlenbeck
 // update v <- c v + s xi, c = exp(-gamma dt / m), s = sqrt(kT (1 - c^2) / m), and its rotational twin with gamma_R
-// and I, the normals of the SOLVENT stream keyed on 6 (ID - 1) + component; then the owners' velocities and spins
-// to every ghost.
+// and I, the normals of the SOLVENT stream keyed on 6 (ID - 1) + component; then, on several ranks, the owners'
+// velocities and spins to every ghost (on one the pair steps read the owned copies, as after a phase).
 void ${fix_cls}::solvent_step()
 {
   double **v = atom->v, **omega = atom->omega;
@@ -239,7 +239,7 @@ void ${fix_cls}::solvent_step()
       omega[i][1] = cr * omega[i][1] + sr * ziggurat_normal(key, first + 5);
     }
   }
-  comm->forward_comm(this);
+  if (comm->nprocs > 1) comm->forward_comm(this);
 }
 
 void ${fix_cls}::post_force(int)

@@ -102,13 +102,12 @@ def _source(law: FrictionLaw, model: NoiseModel, fields: dict[str, str]) -> str:
 Ziggurat = tuple[tuple[np.ndarray, np.ndarray, np.ndarray], float]
 
 
-def _style(law: FrictionLaw, fields: dict[str, str], ziggurat: Ziggurat) -> dict[str, str]:
-    """What differs between the pair style of a sliding law (WCA + friction + noise, templates.SLIDING_COMPUTE;
-    its plugin registers the fix of the ``calculi`` too) and of a rolling or spinning law (couples only, mode_code):
-    compute(), the potential, the support code, the plugin's info, the dimension check, and the input templates'
-    model and pair lines."""
+def _style(law: FrictionLaw, fields: dict[str, str], ziggurat: Ziggurat, parameters: str) -> dict[str, str]:
+    """What differs between the pair style of a sliding law (WCA + friction + noise, templates.SLIDING_COMPUTE)
+    and of a rolling or spinning law (couples only, mode_code): compute(), the potential, the support code, the
+    plugin's info, the dimension check, and the input templates' model and pair lines (with the law's
+    ``parameters``, " name value" each)."""
     weight_call = "weight(r, params)" if law.weight is not None else "1.0"
-    parameters = "".join(f" {p.name} {float(p.default)!r}" for p in law.parameters if p.name not in OWNED)
     law_name, calculus = law.name, fields["calculus"]
     if law.mode == "sliding":
         return {
@@ -265,7 +264,9 @@ def plugin_files(
     fields = {"law": law.name, "LAW_UPPER": law.name.upper(), "cls": class_name(law.name), "calculus": calculus}
     fields["built_for"] = f"{law.name} {digest}"  # what the plugin's creator checks its class against (templates.PLUGIN)
     fields["parameter_list"] = ", ".join(n for n in names if n not in OWNED) or "none"
-    fields |= _style(law, fields, ziggurat)
+    parameters = "".join(f" {p.name} {float(p.default)!r}" for p in law.parameters if p.name not in OWNED)
+    systems = {dim: system for dim, system in _SYSTEMS.items() if law.mode != "spinning" or dim == 3}  # no spinning in 2-D
+    fields |= _style(law, fields, ziggurat, parameters)
     fields |= plugin_fields(law.name, list(fix_models)) | {"fix_source": f" fix_fricgen_{law.name}.cpp"}
     files = {
         f"pair_fricgen_{law.name}.h": cxx + HEADER.substitute(fields),
@@ -281,10 +282,6 @@ def plugin_files(
     normals = ziggurat_code(*ziggurat) if law.mode == "sliding" else ziggurat_support(law.mode, *ziggurat)
     fix = fix_files(fields | _law_values(law, model), kernels, support(), normals, law.weight is not None, list(fix_models), law.mode)
     files |= {name: cxx + text for name, text in fix.items()}
-    for dim, system in _SYSTEMS.items():
-        if law.mode != "spinning" or dim == 3:  # spinning does not exist in 2-D
-            files[f"in.{law.name}_{dim}d"] = hash_mark + INPUT.substitute(fields, dim=dim, **system)
-    parameters = "".join(f" {p.name} {float(p.default)!r}" for p in law.parameters if p.name not in OWNED)
-    systems = {dim: system for dim, system in _SYSTEMS.items() if law.mode != "spinning" or dim == 3}
+    files |= {f"in.{law.name}_{dim}d": hash_mark + INPUT.substitute(fields, dim=dim, **system) for dim, system in systems.items()}
     files |= {name: hash_mark + text for name, text in exact_inputs(fields, parameters, systems, law.mode).items()}
     return files

@@ -491,7 +491,7 @@ FixFricgenRollingCoulombNewton::FixFricgenRollingCoulombNewton(LAMMPS *lmp, int 
     int k = 0;
     while (k < NPARAMS && key != PARAMETERS[k]) k++;
     if (k == NPARAMS || k == SIGMA_INDEX)
-      error->all(FLERR, "fix fricgen/exact/rolling_coulomb_newton: unknown keyword {} (noise, calculus, inertia or a law parameter: "
+      error->all(FLERR, "fix fricgen/exact/rolling_coulomb_newton: unknown keyword {} (noise, calculus, inertia, solvent or a law parameter: "
                  "gamma_r, kappa_r)", key);
     const double value = utils::numeric(FLERR, arg[a + 1], false, lmp);
     const double *range = RANGES[k];
@@ -576,9 +576,10 @@ void FixFricgenRollingCoulombNewton::step_pair(const Pair &p, uint64_t key)
   const double dx = x[p.j][0] - x[i][0], dy = x[p.j][1] - x[i][1], dz = x[p.j][2] - x[i][2];
   const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
   const double n[3] = {dx / r, dy / r, dz / r};
-  const double ri = radius[i], rk = radius[k], sigma = ri + rk, reff = ri * rk / sigma;
+  const double ri = radius[i], rk = radius[k], sigma = ri + rk;
   const double w = weight(r / sigma, params) / sigma;
   const double inv_ii = 1.0 / (inertia * rmass[i] * (ri * ri)), inv_ik = 1.0 / (inertia * rmass[k] * (rk * rk));
+  const double reff = ri * rk / sigma;
   const double mu = reff * reff * (inv_ii + inv_ik);
   const double ox = omega[i][0] - omega[k][0], oy = omega[i][1] - omega[k][1], oz = omega[i][2] - omega[k][2];
   double e1[3] = {0.0, 0.0, 1.0}, e2[3] = {0.0, 0.0, 0.0};
@@ -652,8 +653,8 @@ template <typename Key> void FixFricgenRollingCoulombNewton::sort_by(size_t firs
 
 // The engine's solvent step O (single_particle.kick_drift_solvent) on the owned atoms: the exact Ornstein-Uhlenbeck
 // update v <- c v + s xi, c = exp(-gamma dt / m), s = sqrt(kT (1 - c^2) / m), and its rotational twin with gamma_R
-// and I, the normals of the SOLVENT stream keyed on 6 (ID - 1) + component; then the owners' velocities and spins
-// to every ghost.
+// and I, the normals of the SOLVENT stream keyed on 6 (ID - 1) + component; then, on several ranks, the owners'
+// velocities and spins to every ghost (on one the pair steps read the owned copies, as after a phase).
 void FixFricgenRollingCoulombNewton::solvent_step()
 {
   double **v = atom->v, **omega = atom->omega;
@@ -677,7 +678,7 @@ void FixFricgenRollingCoulombNewton::solvent_step()
       omega[i][1] = cr * omega[i][1] + sr * ziggurat_normal(key, first + 5);
     }
   }
-  comm->forward_comm(this);
+  if (comm->nprocs > 1) comm->forward_comm(this);
 }
 
 void FixFricgenRollingCoulombNewton::post_force(int)

@@ -467,7 +467,7 @@ FixFricgenStribeck::FixFricgenStribeck(LAMMPS *lmp, int narg, char **arg) : Fix(
     int k = 0;
     while (k < NPARAMS && key != PARAMETERS[k]) k++;
     if (k == NPARAMS || k == SIGMA_INDEX)
-      error->all(FLERR, "fix fricgen/exact/stribeck: unknown keyword {} (noise, calculus, inertia or a law parameter: "
+      error->all(FLERR, "fix fricgen/exact/stribeck: unknown keyword {} (noise, calculus, inertia, solvent or a law parameter: "
                  "kappa_s, kappa_d, u_s)", key);
     const double value = utils::numeric(FLERR, arg[a + 1], false, lmp);
     const double *range = RANGES[k];
@@ -545,17 +545,18 @@ void FixFricgenStribeck::check_domain()
 // The engine's pairwise step of one pair (contact_step.update_pair) on the canonical copies i and c.
 void FixFricgenStribeck::step_pair(const Pair &p, uint64_t key)
 {
-  double **x = atom->x, **v = atom->v, **omega = atom->omega;
+  double **x = atom->x, **omega = atom->omega;
   const double *radius = atom->radius, *rmass = atom->rmass;
-  const bool three = domain->dimension == 3;
   const int i = p.i, k = p.c;
   const double dx = x[p.j][0] - x[i][0], dy = x[p.j][1] - x[i][1], dz = x[p.j][2] - x[i][2];
   const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
   const double n[3] = {dx / r, dy / r, dz / r};
   const double ri = radius[i], rk = radius[k], sigma = ri + rk;
   const double w = weight(r / sigma, params) / sigma;
-  const double inv_mi = 1.0 / rmass[i], inv_mk = 1.0 / rmass[k];
   const double inv_ii = 1.0 / (inertia * rmass[i] * (ri * ri)), inv_ik = 1.0 / (inertia * rmass[k] * (rk * rk));
+  double **v = atom->v;
+  const bool three = domain->dimension == 3;
+  const double inv_mi = 1.0 / rmass[i], inv_mk = 1.0 / rmass[k];
   const double mu = inv_mi + inv_mk + ri * ri * inv_ii + rk * rk * inv_ik;
   // u_perp = P (v_k - v_i) - (R_i w_i + R_k w_k) x n (F-4) as x = u_perp . (e1 + i e2): contact_step.contact_mode
   const double wx = ri * omega[i][0] + rk * omega[k][0], wy = ri * omega[i][1] + rk * omega[k][1];
@@ -627,8 +628,8 @@ template <typename Key> void FixFricgenStribeck::sort_by(size_t first, size_t la
 
 // The engine's solvent step O (single_particle.kick_drift_solvent) on the owned atoms: the exact Ornstein-Uhlenbeck
 // update v <- c v + s xi, c = exp(-gamma dt / m), s = sqrt(kT (1 - c^2) / m), and its rotational twin with gamma_R
-// and I, the normals of the SOLVENT stream keyed on 6 (ID - 1) + component; then the owners' velocities and spins
-// to every ghost.
+// and I, the normals of the SOLVENT stream keyed on 6 (ID - 1) + component; then, on several ranks, the owners'
+// velocities and spins to every ghost (on one the pair steps read the owned copies, as after a phase).
 void FixFricgenStribeck::solvent_step()
 {
   double **v = atom->v, **omega = atom->omega;
@@ -652,7 +653,7 @@ void FixFricgenStribeck::solvent_step()
       omega[i][1] = cr * omega[i][1] + sr * ziggurat_normal(key, first + 5);
     }
   }
-  comm->forward_comm(this);
+  if (comm->nprocs > 1) comm->forward_comm(this);
 }
 
 void FixFricgenStribeck::post_force(int)
