@@ -17,7 +17,15 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-KERNEL_LAYER = {"fricgen.kernels", "fricgen.law_kernels", "fricgen.rng", "fricgen.schema", "fricgen.errors", "fricgen.compiled", "fricgen.accuracy"}
+KERNEL_LAYER = {
+    "fricgen.kernels",
+    "fricgen.law_kernels",
+    "fricgen.rng",
+    "fricgen.schema",
+    "fricgen.errors",
+    "fricgen.compiled",
+    "fricgen.accuracy",
+}
 ENGINES = ("fricgen.langevin", "fricgen.rods")
 #: What an engine may import from derive: the plain-data modules, no SymPy.
 DERIVE_DATA = {
