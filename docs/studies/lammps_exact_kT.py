@@ -8,11 +8,12 @@ rolling_coulomb_newton together with coulomb_newton (two fixes), and a law of a 
 no test was tuned against. T_trans and T_rot: means over the samples (every 10 steps) after 2000 steps,
 errors from 20 blocks. Verdict per run: |T - 1| < 0.5 % and < 4 errors.
 
-Negative control, with WCA (lj/cut) as the templates ship: the explicit plugin (pair style fricgen/<law>,
-the first-order kick) against the fix at the same dt = 5e-3, 2-D and 3-D, no solvent. With WCA, velocity
-Verlet's own error enters both. And 1 against 2 ranks (free flight, 2-D, coulomb_newton).
+With WCA (lj/cut) as the templates ship: the fix with and without its solvent, and as the negative control
+the explicit plugin (pair style fricgen/<law>, the first-order kick) at the same dt = 5e-3, 2-D and 3-D,
+no solvent. And 1 against 2 ranks (free flight, 2-D, coulomb_newton, --rank-steps sampled steps each).
 
-Run: python docs/studies/lammps_exact_kT.py [--steps 20000]  (writes docs/studies/results/lammps_exact_kT.json)
+Run: python docs/studies/lammps_exact_kT.py [--steps 20000] [--rank-steps 20000] [--rows free,ranks,wca]
+(writes docs/studies/results/lammps_exact_kT.json; the runs of a call replace those of the same kind)
 """
 
 from __future__ import annotations
@@ -131,15 +132,17 @@ def verdict(result: dict) -> bool:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--steps", type=int, default=20000, help="sampled steps per run (after 2000)")
+    parser.add_argument("--rank-steps", type=int, default=20000, help="sampled steps of the 1- and 2-rank pair")
+    parser.add_argument("--rows", default="free,ranks,wca", help="which runs: free (every law in free flight), ranks (1 and 2 ranks), wca")
     options = parser.parse_args()
     lammps = locate_lammps()
     work = Path(tempfile.mkdtemp(prefix="fricgen-kT-"))
     built = plugins(lammps, work)
     rows = []
 
-    def record(kind, law, dim, solvent, ranks, text):
+    def record(kind, law, dim, solvent, ranks, text, steps=options.steps):
         result = temperatures(lammps, work, text, ranks)
-        row = {"kind": kind, "law": law, "dim": dim, "solvent": solvent, "ranks": ranks, **result, "within": verdict(result)}
+        row = {"kind": kind, "law": law, "dim": dim, "solvent": solvent, "ranks": ranks, "steps": steps, **result, "within": verdict(result)}
         rows.append(row)
         (t, dt_), (r, dr) = result["T_trans"], result["T_rot"]
         print(
@@ -148,15 +151,27 @@ def main() -> None:
             flush=True,
         )
 
-    for law in LAWS:
+    chosen = options.rows.split(",")
+    if "free" in chosen:
+        for law in LAWS:
+            for dim in (2, 3):
+                for solvent in (0, 1):
+                    record("fix, free flight", law, dim, solvent, 1, script(law, dim, built, solvent, options.steps, NO_FORCE))
+    if "ranks" in chosen:
+        for ranks in (1, 2):
+            text = script("coulomb_newton", 2, built, 0, options.rank_steps, NO_FORCE)
+            record("fix, free flight", "coulomb_newton", 2, 0, ranks, text, options.rank_steps)
+    if "wca" in chosen:
         for dim in (2, 3):
             for solvent in (0, 1):
-                record("fix, free flight", law, dim, solvent, 1, script(law, dim, built, solvent, options.steps, NO_FORCE))
-    record("fix, free flight", "coulomb_newton", 2, 0, 2, script("coulomb_newton", 2, built, 0, options.steps, NO_FORCE))
-    for dim in (2, 3):
-        record("fix, WCA", "coulomb_newton", dim, 0, 1, script("coulomb_newton", dim, built, 0, options.steps, WCA))
-        record("explicit, WCA", "coulomb_newton", dim, 0, 1, script("coulomb_newton", dim, built, 0, options.steps, WCA, explicit=True))
-    RESULTS.write_text(json.dumps({"dt": 5e-3, "sampled_steps": options.steps, "runs": rows}, indent=1) + "\n")
+                record("fix, WCA", "coulomb_newton", dim, solvent, 1, script("coulomb_newton", dim, built, solvent, options.steps, WCA))
+            text = script("coulomb_newton", dim, built, 0, options.steps, WCA, explicit=True)
+            record("explicit, WCA", "coulomb_newton", dim, 0, 1, text)
+    # the runs of this call replace those of the same kind, law, dimension, solvent and ranks
+    keys = {(r["kind"], r["law"], r["dim"], r["solvent"], r["ranks"]) for r in rows}
+    kept = json.loads(RESULTS.read_text())["runs"] if RESULTS.exists() else []
+    kept = [r for r in kept if (r["kind"], r["law"], r["dim"], r["solvent"], r["ranks"]) not in keys]
+    RESULTS.write_text(json.dumps({"dt": 5e-3, "runs": kept + rows}, indent=1) + "\n")
     print(f"written {RESULTS}")
 
 

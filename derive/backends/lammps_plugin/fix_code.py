@@ -2,8 +2,8 @@
 (fricgen/langevin/contact_step.py, docs/physics.md#the-pairwise-contact-step), formula for formula,
 under MPI domain decomposition.
 
-Per step, at post_force (after fix nve/sphere's half kick and drift and the force computation at the
-new positions, before its second half kick: the engine's B A A C B without solvent), every pair of
+Per step, at end_of_step (after fix nve/sphere's velocity Verlet, B A B; under run_style respa once per
+outer step, after the inner steps), the solvent's exact Ornstein–Uhlenbeck step O if asked for, then every pair of
 atoms of the group within 2^(1/6) (R_i + R_k) takes the engine's Metropolis-adjusted move of the
 mode its law acts on (sliding: contact_step.update_pair; rolling, spinning: update_rolling, spins only):
 the same proposal (the Lamperti map and Ornstein–Uhlenbeck step of mode_step), the same acceptance rule
@@ -206,7 +206,7 @@ class ${fix_cls} : public Fix {
   void init() override;
   void init_list(int, class NeighList *) override;
   void setup(int) override;
-  void post_force(int) override;
+  void end_of_step() override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
   int pack_reverse_comm(int, int, double *) override;

@@ -706,9 +706,11 @@ FixFricgenSmoothCoulomb::FixFricgenSmoothCoulomb(LAMMPS *lmp, int narg, char **a
 
 FixFricgenSmoothCoulomb::~FixFricgenSmoothCoulomb() = default;
 
+// The solvent and contact steps run at the end of each step, after fix nve/sphere's second half kick (velocity
+// Verlet B A B, then O C); under run_style respa once per outer step, after the inner steps of the forces.
 int FixFricgenSmoothCoulomb::setmask()
 {
-  return POST_FORCE;
+  return END_OF_STEP;
 }
 
 void FixFricgenSmoothCoulomb::init()
@@ -848,8 +850,7 @@ template <typename Key> void FixFricgenSmoothCoulomb::sort_by(size_t first, size
 
 // The engine's solvent step O (single_particle.kick_drift_solvent) on the owned atoms: the exact Ornstein-Uhlenbeck
 // update v <- c v + s xi, c = exp(-gamma dt / m), s = sqrt(kT (1 - c^2) / m), and its rotational twin with gamma_R
-// and I, the normals of the SOLVENT stream keyed on 6 (ID - 1) + component; then, on several ranks, the owners'
-// velocities and spins to every ghost (on one the pair steps read the owned copies, as after a phase).
+// and I, the normals of the SOLVENT stream keyed on 6 (ID - 1) + component.
 void FixFricgenSmoothCoulomb::solvent_step()
 {
   double **v = atom->v, **omega = atom->omega;
@@ -873,13 +874,15 @@ void FixFricgenSmoothCoulomb::solvent_step()
       omega[i][1] = cr * omega[i][1] + sr * ziggurat_normal(key, first + 5);
     }
   }
-  if (comm->nprocs > 1) comm->forward_comm(this);
 }
 
-void FixFricgenSmoothCoulomb::post_force(int)
+void FixFricgenSmoothCoulomb::end_of_step()
 {
   if (neighbor->ncalls != built) collect_candidates();
   if (gamma > 0.0 || gamma_rot > 0.0) solvent_step();
+  // the last half kick and the solvent changed the owned copies only: on several ranks the ghosts get them
+  // (on one the pair steps read the owned copies)
+  if (comm->nprocs > 1) comm->forward_comm(this);
   double **x = atom->x;
   const double *radius = atom->radius;
   const uint64_t key = stream_key(static_cast<uint64_t>(seed), static_cast<uint64_t>(update->ntimestep - 1), CONTACT_STREAM);

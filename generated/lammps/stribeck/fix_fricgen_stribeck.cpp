@@ -486,9 +486,11 @@ FixFricgenStribeck::FixFricgenStribeck(LAMMPS *lmp, int narg, char **arg) : Fix(
 
 FixFricgenStribeck::~FixFricgenStribeck() = default;
 
+// The solvent and contact steps run at the end of each step, after fix nve/sphere's second half kick (velocity
+// Verlet B A B, then O C); under run_style respa once per outer step, after the inner steps of the forces.
 int FixFricgenStribeck::setmask()
 {
-  return POST_FORCE;
+  return END_OF_STEP;
 }
 
 void FixFricgenStribeck::init()
@@ -628,8 +630,7 @@ template <typename Key> void FixFricgenStribeck::sort_by(size_t first, size_t la
 
 // The engine's solvent step O (single_particle.kick_drift_solvent) on the owned atoms: the exact Ornstein-Uhlenbeck
 // update v <- c v + s xi, c = exp(-gamma dt / m), s = sqrt(kT (1 - c^2) / m), and its rotational twin with gamma_R
-// and I, the normals of the SOLVENT stream keyed on 6 (ID - 1) + component; then, on several ranks, the owners'
-// velocities and spins to every ghost (on one the pair steps read the owned copies, as after a phase).
+// and I, the normals of the SOLVENT stream keyed on 6 (ID - 1) + component.
 void FixFricgenStribeck::solvent_step()
 {
   double **v = atom->v, **omega = atom->omega;
@@ -653,13 +654,15 @@ void FixFricgenStribeck::solvent_step()
       omega[i][1] = cr * omega[i][1] + sr * ziggurat_normal(key, first + 5);
     }
   }
-  if (comm->nprocs > 1) comm->forward_comm(this);
 }
 
-void FixFricgenStribeck::post_force(int)
+void FixFricgenStribeck::end_of_step()
 {
   if (neighbor->ncalls != built) collect_candidates();
   if (gamma > 0.0 || gamma_rot > 0.0) solvent_step();
+  // the last half kick and the solvent changed the owned copies only: on several ranks the ghosts get them
+  // (on one the pair steps read the owned copies)
+  if (comm->nprocs > 1) comm->forward_comm(this);
   double **x = atom->x;
   const double *radius = atom->radius;
   const uint64_t key = stream_key(static_cast<uint64_t>(seed), static_cast<uint64_t>(update->ntimestep - 1), CONTACT_STREAM);

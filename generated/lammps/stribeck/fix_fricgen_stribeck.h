@@ -24,7 +24,7 @@ class FixFricgenStribeck : public Fix {
   void init() override;
   void init_list(int, class NeighList *) override;
   void setup(int) override;
-  void post_force(int) override;
+  void end_of_step() override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
   int pack_reverse_comm(int, int, double *) override;
