@@ -28,7 +28,13 @@ selected by Stepping.layer. Baxter's sticky rods in the limit eps = 0 (Ring.bond
 sticky boundary of fricgen.rods.sticky instead: bonded pairs (gaps <= CONTACT_TOLERANCE) are counted in
 gap bin 0.
 
-The physics: docs/physics.md#brownian-cluster-dynamics, docs/physics-bcd-contact-layer.md.
+The field's drift (Stepping.drift): EULER evaluates the forces at x; LM (Leimkuhler-Matthews, with the bridge
+layer) at the midpoint of the step's noise, q = x + delta with delta = sqrt(2 D dt) N / 2 and the hard core
+restored by the bridge, then moves x by mu F(q) dt + 2 delta with the bridge and samples the rods at q
+(second order for the profile away from contacts).
+
+The physics: docs/physics.md#brownian-cluster-dynamics, docs/physics-bcd-contact-layer.md,
+docs/physics-bcd-field-drift.md.
 """
 
 from __future__ import annotations
@@ -45,6 +51,8 @@ from .contact import BRIDGE, MERGE, propagate, tally_local_time
 from .records import COUNTS, RING, STEPPING
 from .sticky import ALL_IN_CONTACT, OK, sticky_step
 
+EULER, LM = 0, 1  # the field's drift schemes, the positions of their names in fricgen.rods.config.DRIFT_SCHEMES
+_MIDPOINT_STREAM = 0x6D6964706F696E74  # the midpoint bridge's key: a sub-stream of the step's BCD key
 CONTACT_TOLERANCE = 1e-12  # relative to sigma: gaps below it are contacts (with the sticky boundary: bonds)
 PASSED = 1  # rods overlapped (the other statuses: fricgen.rods.sticky)
 
@@ -242,7 +250,8 @@ def advance_rods(positions, ring, stepping, external, pair_force, counts):
     rods per bin of one wavelength; gap_counts[r, b, k] the left rods of pairs in exact contact
     (k = 0; with the bridge layer instead their local time at contact, fricgen.rods.contact.tally_local_time;
     with the sticky boundary the bonded pairs)
-    and with gap r - sigma in [(k - 1) w, k w) (k >= 1), w = gap_width. Returns OK or a
+    and with gap r - sigma in [(k - 1) w, k w) (k >= 1), w = gap_width; the forces act and the rods are
+    sampled at the noise's midpoint with stepping.drift == LM. Returns OK or a
     failure status (PASSED: rods overlapped; ALL_IN_CONTACT: no gap left on the ring; LONG_STEP: a bond's
     detach probability above 1).
     """
@@ -261,16 +270,25 @@ def advance_rods(positions, ring, stepping, external, pair_force, counts):
         d, drift, push, candidates, values = np.empty(n), np.empty(n), np.empty(n), np.empty(n, dtype=np.int64), np.empty((n, 5))
         bridge = (push, candidates, values, np.full(n, -1, dtype=np.int64), np.empty(n, dtype=np.int64))  # contact.propagate
         sticky = (np.empty(n), np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64), np.empty(n, dtype=np.bool_), np.empty(n + 1))
+        normals, midpoint, half = np.empty(n), np.empty(n), np.empty(n)
         for s in range(stepping.steps):
             key = fold_key(stream_key(stepping.seed, stepping.first_step + s, BCD), r)
-            external(x, ring.field_params, forces)
+            for i in range(n):
+                normals[i] = ziggurat_normal(key, i)
+            at = x  # where the forces act and the rods are sampled
+            if stepping.drift == LM:  # q = x + delta, the midpoint of the step's noise, by the bridge
+                for i in range(n):
+                    midpoint[i], half[i] = x[i], 0.5 * noise * mu * dt * normals[i]
+                propagate(midpoint, half, length, sigma, 0.25 * variance, fold_key(key, _MIDPOINT_STREAM), BRIDGE, bridge)
+                at = midpoint
+            external(at, ring.field_params, forces)
             for i in range(n):
                 if ring.bond > 0.0:
                     drift[i] = mu * dt * (forces[i] + ring.drive)  # the sticky boundary's drift
-                forces[i] += ring.drive + noise * ziggurat_normal(key, i)
+                forces[i] += ring.drive + noise * normals[i]
             if ring.pair_on:
                 for i in range(n):
-                    gap = _gap(x, i, length)
+                    gap = _gap(at, i, length)
                     if gap < sigma + ring.pair_range:
                         f = pair_force(gap, ring.pair_params)  # on the right rod, from the left one (B-32)
                         forces[i + 1 if i + 1 < n else 0] += f
@@ -289,7 +307,7 @@ def advance_rods(positions, ring, stepping, external, pair_force, counts):
                 if stepping.layer == BRIDGE:  # the contact density from the local time at contact
                     tally_local_time(bridge, count, variance, 2.0 * stepping.gap_width / variance, ring.wavelength, gap_counts[r])
             if status[r] == OK:
-                status[r] = _sample(x, ring, stepping.gap_width, rho_counts[r], gap_counts[r])
+                status[r] = _sample(at, ring, stepping.gap_width, rho_counts[r], gap_counts[r])
             if status[r] != OK:
                 break
     return status.max()

@@ -19,6 +19,8 @@ from ..schema import Section, flat_fields
 BYTES_PER_ROD, BYTES_PER_BIN = 224, 32
 #: How a step ends collisions (fricgen.rods.contact): BCD's inelastic merge (O(sqrt(dt))), elastic exchange, Brownian-bridge push.
 CONTACT_LAYERS = ("merge", "reflect", "bridge")
+#: Where a step evaluates the forces (fricgen.rods.bcd): its start, or its noise's midpoint (docs/physics-bcd-field-drift.md).
+DRIFT_SCHEMES = ("euler", "lm")
 
 
 @dataclass(frozen=True)
@@ -172,6 +174,10 @@ class RodNumerics(Section):
         How a step ends collisions (fricgen.rods.contact): "bridge" (bias O(dt),
         docs/physics-bcd-contact-layer.md), "reflect" (O(dt) away from contact) or BCD's own "merge"
         (O(sqrt(dt)), docs/physics.md#brownian-cluster-dynamics).
+    drift_scheme : str
+        Where a step evaluates the forces: "euler" (at its start) or "lm" (Leimkuhler-Matthews: at the
+        midpoint of its noise, where the rods are also sampled; bridge layer only;
+        docs/physics-bcd-field-drift.md).
     """
 
     SECTION = "numerics"
@@ -179,6 +185,7 @@ class RodNumerics(Section):
     seed: int = 1
     start_sweeps: int | None = None
     contact_layer: str = "bridge"
+    drift_scheme: str = "euler"
 
     @property
     def error_order(self) -> float:
@@ -194,6 +201,14 @@ class RodNumerics(Section):
         layers = ", ".join(CONTACT_LAYERS)
         self.require(
             self.contact_layer in CONTACT_LAYERS, "contact_layer", f"must be one of {layers}, got {self.contact_layer!r}", "give bridge"
+        )
+        schemes = ", ".join(DRIFT_SCHEMES)
+        self.require(self.drift_scheme in DRIFT_SCHEMES, "drift_scheme", f"must be one of {schemes}, got {self.drift_scheme!r}", "give lm")
+        self.require(
+            self.drift_scheme == "euler" or self.contact_layer == "bridge",
+            "drift_scheme",
+            f"the lm drift needs the bridge contact layer, got {self.contact_layer!r}",
+            "give contact_layer = bridge, or drift_scheme = euler",
         )
 
 
@@ -266,6 +281,12 @@ class RodConfig(Section):
             "numerics.contact_layer",
             f"the sticky boundary (eps = 0) runs with the bridge layer only, got {self.numerics.contact_layer!r}",
             "give bridge",
+        )
+        self.require(
+            not self.model.sticky_boundary or self.numerics.drift_scheme == "euler",
+            "numerics.drift_scheme",
+            "the sticky boundary (eps = 0) runs with the euler drift only",
+            "give euler",
         )
         m, r = self.model, self.sampling
         needed = r.replicas * (m.n * BYTES_PER_ROD + r.bins * (r.gap_bins + 1) * BYTES_PER_BIN)

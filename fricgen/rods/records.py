@@ -33,7 +33,8 @@ class Ring(NamedTuple):
 
 class Stepping(NamedTuple):
     """Time step, number of steps, the first step's index (the noise counter), noise seed, the
-    width of the gap histogram's bins, and the contact layer (fricgen.rods.contact: MERGE, REFLECT, BRIDGE)."""
+    width of the gap histogram's bins, the contact layer (fricgen.rods.contact: MERGE, REFLECT, BRIDGE) and
+    the field's drift scheme (fricgen.rods.bcd: EULER, or LM, the Leimkuhler-Matthews midpoint)."""
 
     dt: float
     steps: int
@@ -41,8 +42,9 @@ class Stepping(NamedTuple):
     seed: int
     gap_width: float
     layer: int = 0
+    drift: int = 0
 
 
 RING = types.NamedTuple([_F, _F, _F, _F, _F, _F, _F, _V, _V, _F, _B, _F], Ring)
-STEPPING = types.NamedTuple([_F, _I, _I, _I, _F, _I], Stepping)
+STEPPING = types.NamedTuple([_F, _I, _I, _I, _F, _I, _I], Stepping)
 COUNTS = types.Tuple([_M, _T])

@@ -31,7 +31,7 @@ import numpy as np
 from ..errors import ConfigError, SimulationError
 from . import bcd, mc
 from .comparison import RodProfiles, compressibility
-from .config import CONTACT_LAYERS, RodConfig
+from .config import CONTACT_LAYERS, DRIFT_SCHEMES, RodConfig
 from .interactions import field_kernels, pair_kernels
 from .records import Ring, Stepping
 from .stability import warn_step
@@ -148,10 +148,10 @@ class RodSimulation:
         numerics, sampling = self.config.numerics, self.config.sampling
         shape = (sampling.replicas, sampling.bins)
         counts = counts or (np.zeros(shape), np.zeros((*shape, sampling.gap_bins)))
-        layer = CONTACT_LAYERS.index(numerics.contact_layer)
+        layer, drift = CONTACT_LAYERS.index(numerics.contact_layer), DRIFT_SCHEMES.index(numerics.drift_scheme)
         for done in range(0, steps, CHUNK_STEPS):
             chunk = min(CHUNK_STEPS, steps - done)
-            stepping = Stepping(dt or numerics.dt, chunk, self.step, numerics.seed, sampling.gap_width, layer)
+            stepping = Stepping(dt or numerics.dt, chunk, self.step, numerics.seed, sampling.gap_width, layer, drift)
             status = bcd.advance_rods(self.positions, self.ring, stepping, self._field.force_field, self._pair.force, counts)
             if status == bcd.PASSED:
                 raise SimulationError(f"rods overlapped near step {self.step + chunk}: a bug or a non-finite force")
