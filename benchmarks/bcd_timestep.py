@@ -15,7 +15,7 @@ least squares). The contact ratio's error is that of the sum over bins, from the
 replicas (RodProfiles.contact_cov).
 
 Run: nice -n 10 python benchmarks/bcd_timestep.py [--layers merge,bridge] [--steps 1e-3,...] [--cases 0.2,0.5,0.7,sticky] [--time T]
-[--replicas R] [--seed S]
+[--replicas R] [--seed S] [--drifts euler,lm] (lm: the Leimkuhler-Matthews midpoint, docs/physics-bcd-field-drift.md)
 (the full table: minutes per layer and case on two cores; dt = 1e-6 dominates).
 """
 
@@ -35,16 +35,17 @@ STEPS = (1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6, 1e-6)
 STICKY = {"gamma": 1.0, "p": 3.0, "eps": 0.05}
 
 
-def case_config(case: str, dt: float, layer: str, replicas: int = 16, seed: int = 11):
+def case_config(case: str, dt: float, layer: str, replicas: int = 16, seed: int = 11, drift: str = "euler"):
     """The configuration of a case ("0.2", "0.5", "0.7": hard rods at that rho_bar sigma; "sticky")."""
     model = {"n": 50, **STICKY} if case == "sticky" else {"n": round(float(case) * 200)}
-    config = rod_config(**model, length=100.0, sigma=0.5, dt=dt, replicas=replicas, bins=25, seed=seed, contact_layer=layer, gap_bins=40)
+    numerics = {"dt": dt, "seed": seed, "contact_layer": layer, "drift_scheme": drift}
+    config = rod_config(**model, **numerics, length=100.0, sigma=0.5, replicas=replicas, bins=25, gap_bins=40)
     return config.replace(gap_bins=max(40, config.contact_fit_bins()))
 
 
-def measure(case: str, dt: float, layer: str, duration: float, replicas: int = 16, seed: int = 11) -> dict:
+def measure(case: str, dt: float, layer: str, duration: float, replicas: int = 16, seed: int = 11, drift: str = "euler") -> dict:
     """One run: the deviations from the exact profile and the well contrast (mean and error over replicas)."""
-    config = case_config(case, dt, layer, replicas, seed)
+    config = case_config(case, dt, layer, replicas, seed, drift)
     simulation = RodSimulation(config)
     simulation.equilibrate(0.25)
     c, steps = config.sampling, round(duration / dt)
@@ -98,6 +99,7 @@ def main() -> None:
     parser.add_argument("--layers", default="merge,bridge")
     parser.add_argument("--steps", default=",".join(f"{dt:g}" for dt in STEPS))
     parser.add_argument("--cases", default="0.2,0.5,0.7,sticky")
+    parser.add_argument("--drifts", default="euler", help="the field's drift schemes (euler, lm: bridge layer only)")
     parser.add_argument("--time", type=float, default=None, help="sampled time (default 1.25 hard, 3 sticky)")
     parser.add_argument("--replicas", type=int, default=16, help="rings per run")
     parser.add_argument("--seed", type=int, default=11, help="the seed of the first step; the k-th step uses seed + k")
@@ -108,22 +110,24 @@ def main() -> None:
     fits = []
     for case in args.cases.split(","):
         duration = args.time or (3.0 if case == "sticky" else 1.25)
-        for layer in args.layers.split(","):
+        layers, drifts = args.layers.split(","), args.drifts.split(",")
+        for layer, drift in [(layer, drift) for layer in layers for drift in drifts if layer == "bridge" or drift == "euler"]:
             points, contacts = [], []
+            label = layer if drift == "euler" else f"{layer}/{drift}"
             for k, dt in enumerate(steps):
-                f = measure(case, dt, layer, duration, args.replicas, args.seed + k)
+                f = measure(case, dt, layer, duration, args.replicas, args.seed + k, drift)
                 ratio = "-" if f.get("contact_ratio") is None else f"{f['contact_ratio']:.4f} ± {f['contact_ratio_err']:.4f}"
                 chi2 = "-" if f.get("contact_chi2_per_dof") is None else f"{f['contact_chi2_per_dof']:.2f}"
                 print(
-                    f"| {case} | {layer} | {dt:g} | {100 * f['l1_dev_over_rho']:.2f} % | {f['chi2_per_dof']:.2f} | {ratio} | {chi2} | "
+                    f"| {case} | {label} | {dt:g} | {100 * f['l1_dev_over_rho']:.2f} % | {f['chi2_per_dof']:.2f} | {ratio} | {chi2} | "
                     f"{f['contrast']:+.4f} ± {f['contrast_err']:.4f} | {f['seconds']:.0f} |",
                     flush=True,
                 )
                 points.append((dt, f["contrast"], f["contrast_err"]))
                 if f.get("contact_ratio") is not None:
                     contacts.append((dt, f["contact_ratio"] - 1, f["contact_ratio_err"]))
-            fits.append(f"{case}, {layer}: c - 1: {order(points)}" + (f"; contact ratio - 1: {order(contacts)}" if contacts else ""))
-            fits.append(f"{case}, {layer}: c - 1 = C dt^q: {power_law(points)}")
+            fits.append(f"{case}, {label}: c - 1: {order(points)}" + (f"; contact ratio - 1: {order(contacts)}" if contacts else ""))
+            fits.append(f"{case}, {label}: c - 1 = C dt^q: {power_law(points)}")
     print("\nfitted order of |bias|:")
     print("\n".join(fits))
 
