@@ -47,7 +47,7 @@ from numba import types
 
 from ..kernels import FIELD_KERNEL, SCALAR_KERNEL
 from ..rng import BCD, fold_key, stream_key, ziggurat_normal
-from .contact import BRIDGE, MERGE, propagate, tally_local_time
+from .contact import BRIDGE, MERGE, bridge_work, propagate, tally_local_time
 from .records import COUNTS, RING, STEPPING
 from .sticky import ALL_IN_CONTACT, OK, sticky_step
 
@@ -267,8 +267,7 @@ def advance_rods(positions, ring, stepping, external, pair_force, counts):
         members = np.empty(n, dtype=np.int64)
         stack = np.empty((2 * n + 2, 2), dtype=np.int64)
         heap_t, heap_i = np.empty(3 * n), np.empty(3 * n, dtype=np.int64)  # n, then 2 per merge (< n merges)
-        d, drift, push, candidates, values = np.empty(n), np.empty(n), np.empty(n), np.empty(n, dtype=np.int64), np.empty((n, 5))
-        bridge = (push, candidates, values, np.full(n, -1, dtype=np.int64), np.empty(n, dtype=np.int64))  # contact.propagate
+        d, drift, bridge = np.empty(n), np.empty(n), bridge_work(n)  # contact.propagate
         sticky = (np.empty(n), np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64), np.empty(n, dtype=np.bool_), np.empty(n + 1))
         normals, midpoint, half = np.empty(n), np.empty(n), np.empty(n)
         for s in range(stepping.steps):

@@ -19,8 +19,9 @@ d_i = mu F_i dt (the same forces and noise as BCD, B-11) and then restore the ha
   the pair touched during the step (a contact that the end points may miss) iff m < 0, with probability
   exp(-2 a b / v) = exp(-g_0 g_1 / (D_rel dt)) for b > 0. Only pairs with 2 a b / v < BRIDGE_CUT draw.
   Chains: a pair's free end moves with its neighbours' pushes, p_i = max(0, -m(a_i, b_i - (p_{i-1} +
-  p_{i+1}) / 2)), solved by Gauss-Seidel sweeps (for E -> 0, BCD's projection of linear paths); not
-  exact when three rods meet within a step; overlaps it leaves are removed by exchanges as in reflect.
+  p_{i+1}) / 2)), solved for each run of neighbouring pairs by Newton's method (for E -> 0, BCD's projection
+  of linear paths); not exact when three rods meet within a step; overlaps it leaves are removed by
+  exchanges as in reflect.
   The contact density comes from the gaps' local time at contact (tally_local_time).
 
 Derivation, tests and measurements: docs/physics-bcd-contact-layer.md.
@@ -31,13 +32,14 @@ from __future__ import annotations
 import math
 
 import numba
+import numpy as np
 
 from ..rng import fold_key, uniform
 
 MERGE, REFLECT, BRIDGE = 0, 1, 2  # the positions of their names in fricgen.rods.config.CONTACT_LAYERS
 BRIDGE_CUT = 20.0  # pairs with 2 a b / v above it touch with probability < exp(-20) = 2e-9: no draw
 _BRIDGE_STREAM = 0x6272696467650001  # the bridge's uniforms: a sub-stream of the step's BCD key
-_SWEEPS = 200  # at most this many solves per candidate in the chains' Gauss-Seidel (they need a few)
+_TOLERANCE = 1e-12  # the chains' Newton solve stops at a residual below it times sqrt(v)
 _ROUNDING = 8.0 * 2.0**-52  # relative rounding of an exchange, x_i + sigma - L + L != x_i + sigma
 
 
@@ -73,39 +75,97 @@ def exchange(x, length, sigma, tolerance):
 
 
 @numba.njit(inline="always", cache=True)
+def _spread(a, b, variance, e):
+    """R = sqrt((a - b)^2 + 2 variance e) of the bridge from a to b at the exponential variate e."""
+    return math.sqrt((a - b) ** 2 + 2.0 * variance * e)
+
+
+@numba.njit(inline="always", cache=True)
 def bridge_minimum(a, b, variance, e):
     """The minimum of a Brownian bridge from a to b with increment variance ``variance``, for the
     exponential variate e = -ln(1 - u): m = [a + b - sqrt((a - b)^2 + 2 variance e)] / 2."""
-    return 0.5 * (a + b - math.sqrt((a - b) ** 2 + 2.0 * variance * e))
+    return 0.5 * (a + b - _spread(a, b, variance, e))
 
 
 @numba.njit(inline="always", cache=True)
-def _push(a, b, variance, u):
-    """max(0, -m) for the bridge from a to b with E = -ln(1 - u): zero unless the bridge touched, m < 0,
-    i.e. b <= 0 or E > t = 2 a b / v. u <= t / (1 + t) implies E <= u / (1 - u) <= t, which spares the
-    logarithm of most pairs that do not touch."""
+def _bridge(a, b, variance, u):
+    """The push p = max(0, -m) of the bridge from a to b with E = -ln(1 - u), and its slope dp/d(-b), which is
+    (1 + (a - b) / R) / 2 in [0, 1] (R = _spread) where it pushes and 0 where it does not; p is convex in b.
+    It pushes iff m < 0, i.e. b <= 0 or E > t = 2 a b / v; u <= t / (1 + t) implies E <= u / (1 - u) <= t,
+    which spares the logarithm of most pairs that do not touch."""
     if b > 0.0:
         t = 2.0 * a * b / variance
         if u <= t / (1.0 + t):
-            return 0.0
+            return 0.0, 0.0
         e = -math.log1p(-u)
         if e <= t:
-            return 0.0
+            return 0.0, 0.0
     else:
         e = -math.log1p(-u)
-    return -bridge_minimum(a, b, variance, e)
+    spread = _spread(a, b, variance, e)
+    return -bridge_minimum(a, b, variance, e), (0.5 + 0.5 * (a - b) / spread if spread > 0.0 else 0.5)
+
+
+@numba.njit(cache=True)
+def bridge_work(n):
+    """The bridge layer's work arrays for n rods: (push, candidates, values); values[k] holds (a, b, u,
+    x_i + a / 2) of candidate k and three columns of the chains' Newton solve (_chain)."""
+    return np.empty(n), np.empty(n, dtype=np.int64), np.empty((n, 7))
 
 
 @numba.njit(inline="always", cache=True)
-def _enqueue(neighbour, work, top):
-    """Put the candidate of pair ``neighbour`` (if it is one and not queued) on the stack; returns the new top."""
-    values, slots, stack = work[2], work[3], work[4]
-    k = slots[neighbour]
-    if k >= 0 and values[k, 4] == 0.0:
-        values[k, 4] = 1.0
-        stack[top] = k
-        top += 1
-    return top
+def _member(first, j, count):
+    """The row of member j of the chain that starts at candidate ``first`` (candidates wrap at ``count``)."""
+    k = first + j
+    return k - count if k >= count else k
+
+
+@numba.njit(cache=True)
+def _chain(first, size, count, cyclic, variance, tolerance, work):
+    """The pushes of one chain of ``size`` candidates of consecutive pairs (rows first, first + 1, ... modulo
+    ``count`` of the values), whose neighbours outside the chain do not push; cyclic: the whole ring.
+    They solve p_j = phi_j(s_j), s_j = (p_{j-1} + p_{j+1}) / 2, phi_j(s) = the push of the bridge from a_j to
+    b_j - s (_bridge: increasing and convex in s, slope g_j in [0, 1]). Newton's method: p_j <- the solution of
+    p_j - g_j (p_{j-1} + p_{j+1}) / 2 = phi_j - g_j s_j, tridiagonal (diagonally dominant; the last member
+    borders it: p_j = y_j - z_j p_last, which closes a cyclic chain), until max_j |p_j - phi_j(s_j)| <= tolerance.
+    As the map is convex and increasing, the iterates from the members' own pushes (p = phi(0), below the
+    solution) increase monotonically to the solution, and the set of pushing members only grows.
+    Columns 4-6 of the values hold the elimination's c'_j, y_j and z_j."""
+    push, candidates, values = work
+    n, last = push.size, size - 1
+    for _ in range(size + 50):  # the pushing set grows at most size times, then Newton converges quadratically
+        residual, c, y, z, h, r = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        for j in range(size):
+            k = _member(first, j, count)
+            i = candidates[k]
+            s = 0.5 * (push[i - 1 if i > 0 else n - 1] + push[_next(i, n)])
+            phi, g = _bridge(values[k, 0], values[k, 1] - s, variance, values[k, 2])
+            residual = max(residual, abs(phi - push[i]))
+            h, r = -0.5 * g, phi - g * s
+            if j < last:  # eliminate below the diagonal (Thomas), with the last member's column as a second right side
+                lower = h if j > 0 else 0.0
+                pivot = 1.0 - lower * c
+                border = (h if j == last - 1 else 0.0) + (h if cyclic and j == 0 else 0.0)
+                c = (h if j < last - 1 else 0.0) / pivot
+                y, z = (r - lower * y) / pivot, (border - lower * z) / pivot
+                values[k, 4], values[k, 5], values[k, 6] = c, y, z
+        if residual <= tolerance:
+            return
+        for j in range(last - 2, -1, -1):
+            k, above = _member(first, j, count), _member(first, j + 1, count)
+            values[k, 5] -= values[k, 4] * values[above, 5]
+            values[k, 6] -= values[k, 4] * values[above, 6]
+        diagonal = 1.0  # the last row, p_last + h (p_{last-1} + [cyclic] p_0) = r, with p_j = y_j - z_j p_last
+        for j in (last - 1, 0 if cyclic else -1):
+            if j >= 0:
+                k = _member(first, j, count)
+                diagonal -= h * values[k, 6]
+                r -= h * values[k, 5]
+        p = r / diagonal
+        push[candidates[_member(first, last, count)]] = p
+        for j in range(last):
+            k = _member(first, j, count)
+            push[candidates[k]] = values[k, 5] - values[k, 6] * p
 
 
 @numba.njit(cache=True)
@@ -113,11 +173,10 @@ def _pushes(x, d, length, sigma, variance, bridge_key, work):
     """The bridge pushes p_i >= 0 of the pairs (i, i + 1) whose bridge may touch, solved for chains:
     p_i = max(0, -m_i), m_i the minimum of the bridge from a_i to b_i - (p_{i-1} + p_{i+1}) / 2 (the free end
     shifted by the neighbours' pushes, each pair with its own variate E_i). The candidates
-    (2 a_i b_i < BRIDGE_CUT variance) get p_i from their own bridge; then a pair whose push changed by
-    more than 1e-10 sqrt(v) puts its neighbouring candidates on a stack to be solved again (Gauss-Seidel
-    on the chains only). work = (push, candidates, values: (a, b, u, x_i + a / 2, queued) per candidate,
-    slots: the candidate of each pair or -1 (all -1 between steps), stack). Returns the number of candidates."""
-    push, candidates, values, slots, stack = work
+    (2 a_i b_i < BRIDGE_CUT variance) get p_i from their own bridge; each chain of candidates of consecutive
+    pairs with a push is then solved by Newton's method (_chain). work = bridge_work(n). Returns the number
+    of candidates."""
+    push, candidates, values = work
     n = x.size
     count = 0
     for i in range(n):
@@ -129,31 +188,24 @@ def _pushes(x, d, length, sigma, variance, bridge_key, work):
         b = a + d[j] - d[i]
         if 2.0 * a * b < BRIDGE_CUT * variance:
             u = uniform(bridge_key, i)
-            candidates[count], slots[i] = i, count
-            values[count, 0], values[count, 1], values[count, 2], values[count, 3], values[count, 4] = a, b, u, x[i] + 0.5 * a, 0.0
-            push[i] = _push(a, b, variance, u)
+            candidates[count] = i
+            values[count, 0], values[count, 1], values[count, 2], values[count, 3] = a, b, u, x[i] + 0.5 * a
+            push[i] = _bridge(a, b, variance, u)[0]
             count += 1
-    top = 0
-    for k in range(count):
+    tolerance = _TOLERANCE * math.sqrt(variance)
+    if count == n:  # every pair of the ring: one cyclic chain
+        _chain(0, n, n, True, variance, tolerance, work)
+        return count
+    for k in range(count):  # the chains, from the candidates whose left neighbour is none (the seam's included)
         i = candidates[k]
-        if push[i] > 0.0:
-            top = _enqueue(i - 1 if i > 0 else n - 1, work, top)
-            top = _enqueue(_next(i, n), work, top)
-    for _ in range(_SWEEPS * count):  # chains: a pair's end moves with its neighbours' pushes
-        if top == 0:
-            break
-        top -= 1
-        k = stack[top]
-        values[k, 4] = 0.0
-        i = candidates[k]
-        before, after = i - 1 if i > 0 else n - 1, _next(i, n)
-        p = _push(values[k, 0], values[k, 1] - 0.5 * (push[before] + push[after]), variance, values[k, 2])
-        if abs(p - push[i]) > 1e-10 * math.sqrt(variance):
-            top = _enqueue(before, work, top)
-            top = _enqueue(after, work, top)
-        push[i] = p
-    for k in range(count):
-        slots[candidates[k]] = -1
+        if candidates[k - 1 if k > 0 else count - 1] == (i - 1 if i > 0 else n - 1):
+            continue
+        size, pushed = 1, push[i] > 0.0
+        while size < count and candidates[_member(k, size, count)] == _next(candidates[_member(k, size - 1, count)], n):
+            pushed = pushed or push[candidates[_member(k, size, count)]] > 0.0
+            size += 1
+        if pushed and size > 1:
+            _chain(k, size, count, False, variance, tolerance, work)
     return count
 
 
@@ -161,9 +213,8 @@ def _pushes(x, d, length, sigma, variance, bridge_key, work):
 def propagate(x, d, length, sigma, variance, key, layer, work):
     """Move rods by their trial displacements d and restore the hard core by the layer REFLECT or BRIDGE
     (module docstring); variance = 4 D dt of a gap's increment, key = this step's key of the replica,
-    work = (push, candidates, values, slots, stack): work arrays of n, n x 5 for values, slots all -1 (see
-    _pushes); after the step,
-    push[i] > 0 if and only if pair (i, i + 1) touched (bridge). Returns the number of bridge candidates."""
+    work = bridge_work(n); after the step push = work[0] has push[i] > 0 if and only if pair (i, i + 1)
+    touched (bridge). Returns the number of bridge candidates."""
     n = x.size
     count = 0
     if layer == BRIDGE:

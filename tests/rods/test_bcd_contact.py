@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 from scipy import integrate, stats
 
-from fricgen.rng import BCD, fold_key, stream_key, ziggurat_normal
+from fricgen.rng import BCD, fold_key, stream_key, uniform, ziggurat_normal
 from fricgen.rods import RodSimulation, bcd, contact, deviations, exact_profile, rod_config
 
 SIGMA, G0, DT, STEPS, SAMPLES = 0.5, 0.2, 0.01, 5, 20_000
@@ -30,7 +30,7 @@ def pairs(drift, layer, seed):
     pair first touched (STEPS + 1: never): bridge, a push; merge, a pair left in contact."""
     gaps, first = np.empty(SAMPLES), np.full(SAMPLES, STEPS + 1)
     x, d, forces, v = np.empty(2), np.empty(2), np.empty(2), np.empty(2)
-    work = (np.empty(2), np.empty(2, dtype=np.int64), np.empty((2, 5)), np.full(2, -1, dtype=np.int64), np.empty(2, dtype=np.int64))
+    work = contact.bridge_work(2)
     clusters = (np.empty(2, dtype=np.int64), np.empty((6, 2), dtype=np.int64), np.empty(3))
     events = (np.empty(6), np.empty(6, dtype=np.int64), np.empty(2))
     for k in range(SAMPLES):
@@ -120,6 +120,41 @@ def test_bridge_minimum_has_the_bridge_law():
         push = np.maximum(-m, 0.0)  # its mean: the integral of P(m < -z) over z > 0
         mean = max(0.0, -b) + integrate.quad(lambda z, a=a, b=b: math.exp(-2 * (a + z) * (b + z) / 0.04), max(0.0, -b), np.inf)[0]
         assert abs(push.mean() - mean) < 4.5 * push.std() / math.sqrt(m.size), (push.mean(), mean)
+
+
+def bridge_pushes(x, d, length, variance, push):
+    """phi_i((p_{i-1} + p_{i+1}) / 2) for the pushes p = ``push``: the push of pair i's bridge with its end moved
+    by its neighbours' pushes (0 for the pairs that do not draw, as in contact._pushes), and how many pairs draw."""
+    n = x.size
+    gaps = np.diff(np.append(x, x[0] + length)) - SIGMA
+    ends = gaps + np.roll(d, -1) - d
+    key = fold_key(7, contact._BRIDGE_STREAM)
+    phi = np.zeros(n)
+    drawn = 2 * gaps * ends < contact.BRIDGE_CUT * variance
+    for i in np.flatnonzero(drawn):
+        phi[i] = contact._bridge(gaps[i], ends[i] - 0.5 * (push[i - 1] + push[(i + 1) % n]), variance, uniform(key, i))[0]
+    return phi, drawn.sum()
+
+
+@pytest.mark.parametrize("n, free, cyclic", [(40, 6.0, False), (6, 0.05, True)])
+def test_chains_of_pushes_solve_their_fixed_point(n, free, cyclic):
+    """Rods with random gaps on a ring of free length ``free``, moved by normals of variance v / 2 (sqrt(v) = 0.1)
+    and a compressing wave: 40 rods with gaps of 0.15 on average make chains of up to 8 pushing pairs, some
+    across the seam; 6 rods with gaps of 0.01 make rings where every pair draws, one cyclic chain. The Newton
+    solve of the chains leaves residuals below 1e-12 sqrt(v); the pairs' own pushes (no chain solve) are off by
+    more than 0.1 sqrt(v)."""
+    rng, variance, length = np.random.default_rng(12), 0.01, n * SIGMA + free
+    work, own, everyone = contact.bridge_work(n), 0.0, 0
+    for _ in range(100):
+        x = np.cumsum(np.append(0.0, rng.dirichlet(np.ones(n))[:-1] * free + SIGMA))
+        d = rng.normal(0.0, math.sqrt(variance / 2), n) - 0.1 * np.sin(2 * np.pi * x / length)
+        contact._pushes(x, d, length, SIGMA, variance, fold_key(7, contact._BRIDGE_STREAM), work)
+        push = work[0].copy()
+        phi, drawn = bridge_pushes(x, d, length, variance, push)
+        assert push.min() >= 0.0 and np.abs(push - phi).max() < 1e-12 * math.sqrt(variance), np.abs(push - phi).max()
+        alone = bridge_pushes(x, d, length, variance, np.zeros(n))[0]
+        own, everyone = max(own, np.abs(alone - bridge_pushes(x, d, length, variance, alone)[0]).max()), everyone + (drawn == n)
+    assert own > 0.1 * math.sqrt(variance) and (everyone > 50) == cyclic, (own, everyone)
 
 
 def test_exchanges_reflect_crossed_gaps_around_the_seam():
