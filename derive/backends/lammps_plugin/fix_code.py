@@ -191,6 +191,7 @@ FIX_HEADER = Template("""#ifndef LMP_FIX_FRICGEN_${LAW_UPPER}_H
 #include "fix.h"
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -227,6 +228,7 @@ class ${fix_cls} : public Fix {
   bigint built;                          // neighbor->ncalls when the candidates were collected
   std::vector<Pair> candidates, pairs;    // the listed pairs in ID order; this step's contacts
   std::vector<Pair> scratch;
+  std::vector<std::pair<tagint, int>> order;    // (ID, ilist index) of the owned atoms, by ID
   std::vector<int> degree, counts;
   std::vector<uint64_t> used;
   std::vector<char> touched;
