@@ -2,7 +2,8 @@
 
 One code path with 3-vectors: in 2-D, z = 0, spins are along z and the contact noise acts along
 the single tangent t = z x r_hat (docs/physics.md#the-two-dimensional-reduction). A step of length
-dt is the splitting B A O A C B (docs/physics.md#integrators-that-match-the-calculus):
+dt is the splitting B A O A B C with the pairwise contact step, B A O A C B with the explicit kick
+(docs/physics.md#integrators-that-match-the-calculus):
 
 - B: v += (dt/2) F/m with F = -dU/dr (WCA by default) + F0 e1 (active) + F_bulk;
 - A: x += v dt/2 and the orientation turns by omega dt/2 (q <- exp(omega dt/4) q, lab frame);
@@ -152,16 +153,16 @@ def advance(motion, bodies, dyn, couplings, kernels, modes, listed, first_step, 
                     mode_slots((pos, new[0], new[1]), bodies, dyn, couplings, modes, lists, keys, True, spin_slots)
                     gather_modes(size, lists, spin_slots, again)
                 _correct(new, bodies, dyn, terms, again)
-        elif dyn.friction and only_sliding:
-            tally = contact_step(motion, bodies, dyn, couplings, (contact, slope, weight), lists, touching, key)
-            proposals, rejections, rejection = proposals + tally[0], rejections + tally[1], rejection + tally[2]
-        elif dyn.friction:
-            modes_keys = (key, keys[0], keys[1])
-            tally = contact_step_modes(motion, bodies, dyn, couplings, (contact, slope, weight), modes, lists, touching, modes_keys)
-            proposals, rejections, rejection = proposals + tally[0], rejections + tally[1], rejection + tally[2]
         if explicit:
             vel[:] = new[0]
             omega[:] = new[1]
         if not half_kick(motion, bodies, dyn, force):
             return NOT_FINITE, n, builds, proposals, rejections, rejection, listed
+        if dyn.friction and not explicit and only_sliding:
+            tally = contact_step(motion, bodies, dyn, couplings, (contact, slope, weight), lists, touching, key)
+            proposals, rejections, rejection = proposals + tally[0], rejections + tally[1], rejection + tally[2]
+        elif dyn.friction and not explicit:
+            modes_keys = (key, keys[0], keys[1])
+            tally = contact_step_modes(motion, bodies, dyn, couplings, (contact, slope, weight), modes, lists, touching, modes_keys)
+            proposals, rejections, rejection = proposals + tally[0], rejections + tally[1], rejection + tally[2]
     return OK, steps, builds, proposals, rejections, rejection, listed
