@@ -15,10 +15,11 @@ import pytest
 from fricgen.kernels import load_law_kernels
 from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, State, Thermostat
 from fricgen.langevin.neighbors import build_neighbors
-from fricgen.langevin.pairs import PAIR_FIELDS, TERMS, WCA_RANGE, gather, pair_slots
+from fricgen.langevin.pairs import PAIR_FIELDS, TERMS, WCA_RANGE, gather
 from fricgen.langevin.records import Bodies
 from fricgen.rng import CONTACT, stream_key
 
+from . import engine
 from .helpers import data_file, dump_lines, read_dump, run, vectors
 
 BOX, SEED, KT, DT, EPSILON = 10.0, 77, 1.3, 2e-3, 1.2
@@ -71,7 +72,7 @@ def engine_forces(law: str, dim: int, noise: bool, coordinates):
     weight = simulation.kernels.module.weight
     switches = (np.uint64(stream_key(SEED, 0, CONTACT)), True, noise, True)  # a uint64 as in the engine (an int below 2^63 types as int64)
     kernels = (simulation.potential.force, simulation.contact, weight)
-    pair_slots((state.position, state.velocity, state.omega), bodies, dyn, simulation.couplings, *kernels, lists, switches, slots)
+    engine.pair_slots((state.position, state.velocity, state.omega), bodies, dyn, simulation.couplings, *kernels, lists, switches, slots)
     terms = np.zeros((TERMS, n, 3))
     gather(particles.radius, lists, slots, terms)
     return terms[0] + terms[1] + terms[3] / DT, terms[2] + terms[4] / DT

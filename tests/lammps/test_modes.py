@@ -20,7 +20,6 @@ import subprocess
 import numba
 import numpy as np
 import pytest
-from numba import types
 
 import fricgen
 from fricgen.app.cli.lammps import build_plugin, emit_plugin, ziggurat
@@ -28,16 +27,14 @@ from fricgen.derive.backends.lammps_plugin.mode_code import STREAMS, ziggurat_su
 from fricgen.derive.backends.lammps_plugin.support_code import support
 from fricgen.derive.driver import generate
 from fricgen.derive.law.catalogues import GENERATED
-from fricgen.kernels import CONTACT_KERNEL, FRICTION_KERNEL, SCALAR_KERNEL
 from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, State, Thermostat
-from fricgen.langevin.contact_step import contact_step_modes
-from fricgen.langevin.forces import conservative_forces
-from fricgen.langevin.modes import MODE_FIELDS, gather_modes, mode_slots
+from fricgen.langevin.modes import MODE_FIELDS, gather_modes
 from fricgen.langevin.neighbors import build_neighbors
-from fricgen.langevin.pairs import PAIR_FIELDS, TERMS, WCA_RANGE, gather, pair_slots
-from fricgen.langevin.records import BODIES, COUPLINGS, DYNAMICS, MODE_KERNELS, MOTION, Bodies, Motion
+from fricgen.langevin.pairs import PAIR_FIELDS, TERMS, WCA_RANGE, gather
+from fricgen.langevin.records import Bodies, Motion
 from fricgen.rng import CONTACT, ROLLING, SPINNING, _word, pair_key, stream_key, ziggurat_normal
 
+from . import engine
 from .helpers import data_file, dump_lines, read_dump, run, vectors, wrapped
 from .test_thermostat import temperatures
 
@@ -127,12 +124,12 @@ def engine_terms(laws, names, dim: int, noise: bool, coordinates, kinds):
     switches = (np.uint64(stream_key(SEED, 0, CONTACT)), couplings.sliding, noise, True)  # keys as the engine's, uint64
     force, contact, _, weight = simulation.step_kernels()
     kernels = (force, contact, weight)
-    pair_slots(coordinates, bodies, dyn, couplings, *kernels, lists, switches, slots)
+    engine.pair_slots(coordinates, bodies, dyn, couplings, *kernels, lists, switches, slots)
     gather(particles.radius, lists, slots, terms)
     sliding = (terms[0] + terms[1] + terms[3] / DT, terms[2] + terms[4] / DT)
     modes, keys = np.zeros((TERMS, n, 3)), (np.uint64(stream_key(SEED, 0, ROLLING)), np.uint64(stream_key(SEED, 0, SPINNING)))
     spin_slots = np.zeros((lists[1].size, MODE_FIELDS))
-    mode_slots(coordinates, bodies, dyn, couplings, simulation.mode_kernels(), lists, keys, noise, spin_slots)
+    engine.mode_slots(coordinates, bodies, dyn, couplings, simulation.mode_kernels(), lists, keys, noise, spin_slots)
     gather_modes(n, lists, spin_slots, modes)
     return sliding, modes[2] + modes[4] / DT
 
@@ -346,28 +343,6 @@ def fix_run(lammps, laws, folder, name: str, dim: int, noise: bool, coordinates,
     return read_dump(folder / "dump.steps")
 
 
-_INDICES = types.Array(types.int64, 1, "C")
-_STEP_MODES = (
-    MOTION,
-    BODIES,
-    DYNAMICS,
-    COUPLINGS,
-    types.Tuple([CONTACT_KERNEL, FRICTION_KERNEL, SCALAR_KERNEL]),
-    MODE_KERNELS,
-    types.UniTuple(_INDICES, 3),
-    types.Array(types.boolean, 1, "C"),
-    types.UniTuple(types.uint64, 3),
-)
-
-
-@numba.njit(_STEP_MODES)
-def step_modes(motion, bodies, dyn, couplings, law, modes, lists, touching, keys):
-    """contact_step_modes with the kernels as first-class functions, the types the engine's advance passes: the
-    engine's cached code, one for every law (called with the kernels' dispatchers it compiles once per law,
-    uncached). Not cached itself: Numba would check that cache against this file only, not the engine's."""
-    return contact_step_modes(motion, bodies, dyn, couplings, law, modes, lists, touching, keys)
-
-
 def engine_mode_steps(laws, name: str, dim: int, noise: bool, snapshots, kinds):
     """The engine's contact step (contact_step_modes) of each step s from LAMMPS's velocities and spins at s and
     positions at s + 1: (velocities, spins) after it, by step."""
@@ -388,10 +363,11 @@ def engine_mode_steps(laws, name: str, dim: int, noise: bool, snapshots, kinds):
         force, contact, slope, weight = simulation.step_kernels()
         lists = build_neighbors(state.position, dyn.box, dim, WCA_RANGE + 0.3)
         touching = np.zeros(lists[1].size, dtype=np.bool_)
-        conservative_forces(state.position, bodies, dyn, couplings, force, lists, np.zeros((n, 3)), touching)
+        engine.conservative_forces(state.position, bodies, dyn, couplings, force, lists, np.zeros((n, 3)), touching)
         motion = Motion(state.position, state.velocity, state.omega, state.orientation)
         keys = tuple(np.uint64(stream_key(SEED, s, stream)) for stream in (CONTACT, ROLLING, SPINNING))
-        step_modes(motion, bodies, dyn, couplings, (contact, slope, weight), simulation.mode_kernels(), lists, touching, keys)
+        law = (contact, slope, weight)
+        engine.contact_step_modes(motion, bodies, dyn, couplings, law, simulation.mode_kernels(), lists, touching, keys)
         out[s + 1] = (state.velocity.copy(), state.omega.copy())
     return out
 
