@@ -3,7 +3,7 @@
 The passive check (2-D, area fraction 0.6, the paper's solvent and WCA, Itô) at dt = 1e-4, 1e-3 and
 5e-3, with the explicit kick and with the pairwise Metropolis-adjusted step, and the pairwise step's
 rejection rate (its mean rejection probability). Prints one line per law, scheme and dt.
-Run: python benchmarks/contact_timestep.py [--n 256] [--time 10] [--dim 2] [--seed 1]
+Run: python benchmarks/contact_timestep.py [--n 256] [--time 10] [--dim 2] [--seed 1] [--schemes explicit,pairwise]
 """
 
 from __future__ import annotations
@@ -32,11 +32,12 @@ def main() -> None:
     parser.add_argument("--time", type=float, default=10.0, help="simulated time per run (t0)")
     parser.add_argument("--dim", type=int, default=2, choices=(2, 3))
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--schemes", default="explicit,pairwise", help="the contact schemes to run, comma-separated")
     args = parser.parse_args()
     print(f"{args.dim}-D, N = {args.n}, {args.time} t0 per run, seed {args.seed}; T +- block error; rejection rate of the pairwise step")
     for law, parameters in LAWS:
         name = law + "".join(f" {key}={value:g}" for key, value in parameters.items())
-        for scheme in ("explicit", "pairwise"):
+        for scheme in args.schemes.split(","):
             for dt in STEPS:
                 options = dict(dim=args.dim, n=args.n, dt=dt, total_time=args.time, seed=args.seed, parameters=parameters)
                 try:
