@@ -142,7 +142,16 @@ def main() -> None:
 
     def record(kind, law, dim, solvent, ranks, text, steps=options.steps):
         result = temperatures(lammps, work, text, ranks)
-        row = {"kind": kind, "law": law, "dim": dim, "solvent": solvent, "ranks": ranks, "steps": steps, **result, "within": verdict(result)}
+        row = {
+            "kind": kind,
+            "law": law,
+            "dim": dim,
+            "solvent": solvent,
+            "ranks": ranks,
+            "steps": steps,
+            **result,
+            "within": verdict(result),
+        }
         rows.append(row)
         (t, dt_), (r, dr) = result["T_trans"], result["T_rot"]
         print(
