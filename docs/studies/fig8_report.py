@@ -18,6 +18,9 @@ Folders without summary.json (still running) are listed as not finished and skip
 
 from __future__ import annotations
 
+import json
+
+import numpy as np
 from matplotlib.figure import Figure
 from report import analyse, arguments, finished_runs, write_record  # docs/studies/report.py, beside this script
 
@@ -29,6 +32,44 @@ def verdict(run: dict) -> str:
     """'separated' (strict), 'bimodal' (the paper's criterion only) or 'mixed'."""
     pooled = run["pooled"]
     return "separated" if pooled["phase_separated"] else "bimodal" if pooled["bimodal"] else "mixed"
+
+
+def separated_fraction(run: dict) -> tuple[float, float]:
+    """The fraction f of the window's frames strictly separated and its error from the frames' autocorrelation:
+    sqrt(f (1 - f) / n (1 + rho) / (1 - rho)), rho the lag-1 autocorrelation of the 0/1 series (0 if undefined;
+    clipped to [0, 0.95]); 0 when every frame agrees."""
+    flags = np.array([frame["separated"] for frame in run["series"] if frame["t"] >= run["window"][0]], dtype=float)
+    f, n = flags.mean(), len(flags)
+    rho = 0.0
+    if flags[:-1].std() > 0.0 and flags[1:].std() > 0.0:
+        rho = min(max(float(np.corrcoef(flags[:-1], flags[1:])[0, 1]), 0.0), 0.95)
+    return float(f), float(np.sqrt(f * (1.0 - f) / n * (1.0 + rho) / (1.0 - rho)))
+
+
+def by_point(runs: list[dict]) -> list[dict]:
+    """Per model and state point: each seed's separated fraction (with its autocorrelation error) and their mean
+    with the error from the seeds' scatter (std / sqrt(seeds); none for one seed)."""
+    points = {}
+    for run in runs:
+        points.setdefault((run["model"], run["F0"], run["packing_fraction"]), []).append(run)
+    rows = []
+    for (model, f0, phi), group in points.items():
+        fractions = [separated_fraction(run) for run in group]
+        values = np.array([f for f, _ in fractions])
+        scatter = float(values.std(ddof=1) / np.sqrt(len(values))) if len(values) > 1 else None
+        rows.append(
+            {
+                "model": model,
+                "F0": f0,
+                "packing_fraction": phi,
+                "seeds": [run["seed"] for run in group],
+                "fractions": fractions,
+                "verdicts": [verdict(run) for run in group],
+                "mean": float(values.mean()),
+                "seed_error": scatter,
+            }
+        )
+    return rows
 
 
 def phase_figure(runs: list[dict], path) -> None:
@@ -57,6 +98,16 @@ def main(argv: list[str] | None = None) -> None:
     runs, pending = finished_runs(args.folders, analyse)
     runs.sort(key=lambda run: (MODELS.index(run["model"]), run["F0"], run["packing_fraction"]))
     write_record(args.results / f"{args.name}.json", [{**run, "verdict": verdict(run)} for run in runs], pending)
+    points = by_point(runs)
+    record = json.loads((args.results / f"{args.name}.json").read_text())
+    (args.results / f"{args.name}.json").write_text(json.dumps({**record, "points": points}, indent=1) + "\n")
+    for point in points:
+        seeds = ", ".join(
+            f"seed {seed}: {f:.2f} +- {e:.2f} ({v})" for seed, (f, e), v in zip(point["seeds"], point["fractions"], point["verdicts"])
+        )
+        error = "" if point["seed_error"] is None else f" +- {point['seed_error']:.2f} (seeds)"
+        where = f"{point['model']:12s} F0 {point['F0']:g} phi {point['packing_fraction']:g}"
+        print(f"{where}: frames separated {point['mean']:.2f}{error}; {seeds}")
     phase_figure(runs, args.results / f"{args.name}.png")
 
 
