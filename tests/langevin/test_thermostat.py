@@ -59,8 +59,10 @@ def test_friction_without_its_noise_is_detected():
 
 @pytest.mark.parametrize(("calculus", "scheme"), [("ito", "stratonovich"), ("stratonovich", "ito")])
 def test_amplitude_with_the_wrong_scheme_is_detected(calculus, scheme):
-    """Constant friction, where D depends strongly on u: the matched pairing passes, the mismatch fails."""
-    common = dict(n=256, dt=1e-4, total_time=10.0, seed=15)
+    """Constant friction, where D depends strongly on u: the matched pairing passes, the mismatch fails. In 7 t0
+    the wrong scheme's T_rot is off by 8.5 and 8.7 of its errors beyond the matched one's deviation (0.922 +- 0.009
+    and 1.101 +- 0.010; in 10 t0 9.6 and 12.9, in 5 t0 only 6.3 and 6.4)."""
+    common = dict(n=256, dt=1e-4, total_time=7.0, seed=15)
     matched = explicit_check("coulomb", calculus=calculus, **common)
     wrong = explicit_check("coulomb", calculus=calculus, scheme=scheme, force_scheme=True, **common)
     assert matched.passed, matched
