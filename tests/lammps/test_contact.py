@@ -19,7 +19,7 @@ from fricgen.langevin.pairs import PAIR_FIELDS, TERMS, WCA_RANGE, gather
 from fricgen.langevin.records import Bodies
 from fricgen.rng import CONTACT, stream_key
 
-from . import engine
+from .. import engine
 from .helpers import data_file, dump_lines, read_dump, run, vectors
 
 BOX, SEED, KT, DT, EPSILON = 10.0, 77, 1.3, 2e-3, 1.2

@@ -34,7 +34,7 @@ from fricgen.langevin.pairs import PAIR_FIELDS, TERMS, WCA_RANGE, gather
 from fricgen.langevin.records import Bodies, Motion
 from fricgen.rng import CONTACT, ROLLING, SPINNING, _word, pair_key, stream_key, ziggurat_normal
 
-from . import engine
+from .. import engine
 from .helpers import data_file, dump_lines, read_dump, run, vectors, wrapped
 from .test_thermostat import temperatures
 

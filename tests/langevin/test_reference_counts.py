@@ -21,12 +21,14 @@ from numba import types
 from fricgen.kernels import CONTACT_KERNEL, FRICTION_KERNEL, SCALAR_KERNEL, load_law_kernels, load_potential
 from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, lattice_state
 from fricgen.langevin.contact_step import _sweep, colour_classes, find_contacts
-from fricgen.langevin.forces import _each_pair_once, _each_particle, conservative_forces
+from fricgen.langevin.forces import _each_pair_once, _each_particle
 from fricgen.langevin.neighbors import build_neighbors
 from fricgen.langevin.pairs import PAIR_FIELDS, pair_slots
 from fricgen.langevin.records import Bodies, Motion
 from fricgen.langevin.single_particle import kick_drift_solvent, solvent_coefficients
 from fricgen.rng import CONTACT, stream_key
+
+from .. import engine as passes
 
 _REFCOUNT = re.compile(r"call void @(NRT_incref|NRT_decref)\(ptr %([\w.$]+)")
 
@@ -109,8 +111,8 @@ def test_the_force_loops_count_no_references(engine):
 def test_the_contact_loops_count_no_references(engine):
     sim, motion, bodies, dyn, lists, weight = engine
     touching = np.zeros(lists[1].size, dtype=np.bool_)
-    conservative_forces(motion.position, bodies, dyn, sim.couplings, sim.potential.force, lists, np.zeros((64, 3)), touching)
-    pairs, geometry = find_contacts(motion.position, bodies, dyn, sim.couplings, weight, lists, touching)
+    passes.conservative_forces(motion.position, bodies, dyn, sim.couplings, sim.potential.force, lists, np.zeros((64, 3)), touching)
+    pairs, geometry = passes.find_contacts(motion.position, bodies, dyn, sim.couplings, weight, lists, touching)
     assert pairs.shape[0] > 0
     _check(find_contacts, (motion.position, bodies, dyn, sim.couplings, weight, lists, touching), {4: SCALAR_KERNEL})
     law = (sim.contact, sim.kernels.friction_slope, weight)

@@ -1,4 +1,5 @@
-"""The engine's compiled passes as the LAMMPS tests call them: with the kernels as first-class functions.
+"""The engine's compiled passes as tests call them from Python (tests/lammps, the reference-count test): with the
+kernels as first-class functions.
 
 Called from Python with a law's kernels (Numba dispatchers), contact_step, pair_slots and the others compile
 once per law and kernel (a calculus's contact is one), and that code is not cached: 20-70 s each. These
@@ -30,6 +31,12 @@ _KEY = types.uint64
 def conservative_forces(pos, bodies, dyn, couplings, pot_force, lists, force, touching):
     """forces.conservative_forces."""
     return forces.conservative_forces(pos, bodies, dyn, couplings, pot_force, lists, force, touching)
+
+
+@numba.njit((_ROWS, BODIES, DYNAMICS, COUPLINGS, SCALAR_KERNEL, _LISTS, _MASK))
+def find_contacts(pos, bodies, dyn, couplings, weight, lists, touching):
+    """contact_step.find_contacts."""
+    return steps.find_contacts(pos, bodies, dyn, couplings, weight, lists, touching)
 
 
 @numba.njit((MOTION, BODIES, DYNAMICS, COUPLINGS, _LAW, _LISTS, _MASK, _KEY))
