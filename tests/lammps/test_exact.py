@@ -249,7 +249,7 @@ def sampled(output: str) -> dict[str, tuple[float, float]]:
     return {name: (v.mean(), v.reshape(20, -1).mean(axis=1).std(ddof=1) / np.sqrt(20)) for name, v in values.items()}
 
 
-@pytest.mark.parametrize("ranks", [1, 2, 4])
+@pytest.mark.parametrize("ranks", [1, 2])
 def test_the_fix_keeps_kT_at_dt_5e_3(lammps, plugin, tmp_path, ranks):
     """Free flight (Verlet exact) at dt = 5e-3: T_trans and T_rot at kT within 4 errors (measured on 1 / 2 ranks:
     0.997 +- 0.006 / 1.004 +- 0.004, 1.002 +- 0.005 / 1.000 +- 0.004); without the contact noise they fall
