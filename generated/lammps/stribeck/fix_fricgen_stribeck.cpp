@@ -598,17 +598,27 @@ void FixFricgenStribeck::collect_candidates()
   const int *mask = atom->mask;
   const int *ilist = list->ilist, *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
-  candidates.clear();
+  // the owned atoms by ID, then each one's partners of higher ID by ID (a handful: insertion sort)
+  order.clear();
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = ilist[ii];
-    if (!(mask[i] & groupbit)) continue;
+    if (mask[i] & groupbit) order.push_back({tag[i], ii});
+  }
+  std::sort(order.begin(), order.end());
+  candidates.clear();
+  for (const auto &owned : order) {
+    const int i = ilist[owned.second];
+    const size_t first = candidates.size();
     for (int jj = 0; jj < numneigh[i]; jj++) {
       const int j = firstneigh[i][jj] & NEIGHMASK;
       if (tag[j] <= tag[i] || !(mask[j] & groupbit)) continue;
-      candidates.push_back({tag[i], tag[j], i, j, atom->map(tag[j]), 0, 0});
+      Pair p = {tag[i], tag[j], i, j, atom->map(tag[j]), 0, 0};
+      size_t q = candidates.size();
+      candidates.push_back(p);
+      for (; q > first && candidates[q - 1].hi > p.hi; q--) candidates[q] = candidates[q - 1];
+      candidates[q] = p;
     }
   }
-  std::sort(candidates.begin(), candidates.end(), [](const Pair &a, const Pair &b) { return a.lo != b.lo ? a.lo < b.lo : a.hi < b.hi; });
   const size_t nall = static_cast<size_t>(atom->nlocal + atom->nghost);
   degree.assign(nall, 0);    // degree, used and touched are all zero between steps
   touched.assign(nall, 0);

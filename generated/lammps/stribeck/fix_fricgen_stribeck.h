@@ -9,6 +9,7 @@
 #include "fix.h"
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -45,6 +46,7 @@ class FixFricgenStribeck : public Fix {
   bigint built;                          // neighbor->ncalls when the candidates were collected
   std::vector<Pair> candidates, pairs;    // the listed pairs in ID order; this step's contacts
   std::vector<Pair> scratch;
+  std::vector<std::pair<tagint, int>> order;    // (ID, ilist index) of the owned atoms, by ID
   std::vector<int> degree, counts;
   std::vector<uint64_t> used;
   std::vector<char> touched;
