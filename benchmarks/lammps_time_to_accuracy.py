@@ -47,9 +47,9 @@ TOLERANCE = 0.005  # relative
 SAMPLE = 0.05  # t0 between thermo samples
 INNER = 2.5e-3  # t0, the inner step of fix+respa
 LADDERS = {
-    "fix": (2e-2, 1e-2, 5e-3, 2.5e-3, 1e-3),
-    "fix+respa": (4e-2, 2e-2, 1e-2, 5e-3),
-    "explicit": (5e-3, 2e-3, 1e-3, 5e-4, 2e-4, 1e-4),
+    "fix": (2e-2, 1.5e-2, 1e-2, 5e-3, 2.5e-3, 1e-3),
+    "fix+respa": (4e-2, 3e-2, 2e-2, 1e-2, 5e-3),
+    "explicit": (5e-3, 2e-3, 1e-3, 7e-4, 5e-4, 2e-4, 1e-4),
 }  # t0
 
 
