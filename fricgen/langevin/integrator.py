@@ -158,11 +158,11 @@ def advance(motion, bodies, dyn, couplings, kernels, modes, listed, first_step, 
             omega[:] = new[1]
         if not half_kick(motion, bodies, dyn, force):
             return NOT_FINITE, n, builds, proposals, rejections, rejection, listed
-        if dyn.friction and not explicit and only_sliding:
-            tally = contact_step(motion, bodies, dyn, couplings, (contact, slope, weight), lists, touching, key)
-            proposals, rejections, rejection = proposals + tally[0], rejections + tally[1], rejection + tally[2]
-        elif dyn.friction and not explicit:
-            modes_keys = (key, keys[0], keys[1])
-            tally = contact_step_modes(motion, bodies, dyn, couplings, (contact, slope, weight), modes, lists, touching, modes_keys)
+        if dyn.friction and not explicit:  # the pairwise contact step, after the last half kick
+            if only_sliding:
+                tally = contact_step(motion, bodies, dyn, couplings, (contact, slope, weight), lists, touching, key)
+            else:
+                modes_keys = (key, keys[0], keys[1])
+                tally = contact_step_modes(motion, bodies, dyn, couplings, (contact, slope, weight), modes, lists, touching, modes_keys)
             proposals, rejections, rejection = proposals + tally[0], rejections + tally[1], rejection + tally[2]
     return OK, steps, builds, proposals, rejections, rejection, listed
