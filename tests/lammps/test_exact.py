@@ -129,6 +129,15 @@ def test_one_rank_is_the_engines_step(lammps, plugin, tmp_path, law, dim, noise)
     assert deviation(snapshots, engine_steps(law, dim, noise, snapshots)) < 1e-12
 
 
+@pytest.mark.parametrize("dim", [2, 3])
+def test_one_rank_with_newton_off_is_the_engines_step(lammps, plugin, tmp_path, dim):
+    """On one rank the fix shares the pair style's half list; with newton off it holds the periodic pair (8, 9) from
+    both atoms, as ghost images of each other: the pair must still be stepped once."""
+    snapshots = lammps_run(lammps, plugin("coulomb_newton"), tmp_path, "coulomb_newton", dim, True, newton="off")
+    assert moved(snapshots) > 0.05
+    assert deviation(snapshots, engine_steps("coulomb_newton", dim, True, snapshots)) < 1e-12
+
+
 @pytest.mark.parametrize(
     "law, calculus, dim",
     [

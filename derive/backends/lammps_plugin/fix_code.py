@@ -22,9 +22,11 @@ pairs of a phase in the engine's order: sorted by IDs, greedily edge-coloured, c
 (contact_step.colour_classes); an atom's ghost copies share one canonical copy (atom->map). After a
 phase, the touched ghost copies' velocities and spins go to their owners (reverse communication, a
 copy that was not touched carries none) and the owners' to every ghost (forward communication).
-On one rank the fix therefore reproduces the engine's step bit for bit; on several, the engine's step
-with the touching pairs split by phase. The candidate pairs are collected and ID-sorted once per
-neighbour-list build; a step filters the contacts from them and sorts phases and colours by counting.
+On one rank the fix therefore reproduces the engine's step to round-off (a pair across the periodic
+boundary takes its vector from a ghost image); on several, the engine's step with the touching pairs split
+by phase. The candidate pairs are collected and ID-sorted once per neighbour-list build, from a full list
+of the fix's own on several ranks, from the pair style's half list (shared, built once) on one; a step
+filters the contacts from them and sorts phases and colours by counting.
 """
 
 from __future__ import annotations
@@ -215,7 +217,8 @@ class ${fix_cls} : public Fix {
 
   struct Pair {
     tagint lo, hi;    // atom IDs, lo < hi
-    int i, j, c;      // owned atom of ID lo, the neighbour-list copy of hi, its canonical copy
+    int i, c;         // the canonical copies of lo (owned) and hi
+    int xi, xj;       // the neighbour-list copies of lo and hi: the pair's vector is x[xj] - x[xi]
     int phase, colour;
   };
 
@@ -228,8 +231,8 @@ class ${fix_cls} : public Fix {
   bigint built;                          // neighbor->ncalls when the candidates were collected
   std::vector<Pair> candidates, pairs;    // the listed pairs in ID order; this step's contacts
   std::vector<Pair> scratch;
-  std::vector<std::pair<tagint, int>> order;    // (ID, ilist index) of the owned atoms, by ID
-  std::vector<int> degree, counts;
+  std::vector<std::pair<tagint, int>> order;    // (ID, index) of the owned atoms, by ID
+  std::vector<int> place, degree, counts;       // place: an owned atom's position in order
   std::vector<uint64_t> used;
   std::vector<char> touched;
   void check_domain();

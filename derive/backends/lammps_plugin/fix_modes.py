@@ -5,13 +5,13 @@ of 2-D by a spinning law's fix."""
 
 from string import Template
 
-#: What both pair steps start from: the pair's distance r, normal n (from i to its neighbour-list partner j),
+#: What both pair steps start from: the pair's distance r, normal n (from lo to hi, on their neighbour-list copies),
 #: radii, the law's weight w and the inverse moments of inertia, on the canonical copies i and k.
 PAIR_GEOMETRY = """\
   double **x = atom->x, **omega = atom->omega;
   const double *radius = atom->radius, *rmass = atom->rmass;
   const int i = p.i, k = p.c;
-  const double dx = x[p.j][0] - x[i][0], dy = x[p.j][1] - x[i][1], dz = x[p.j][2] - x[i][2];
+  const double dx = x[p.xj][0] - x[p.xi][0], dy = x[p.xj][1] - x[p.xi][1], dz = x[p.xj][2] - x[p.xi][2];
   const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
   const double n[3] = {dx / r, dy / r, dz / r};
   const double ri = radius[i], rk = radius[k], sigma = ri + rk;

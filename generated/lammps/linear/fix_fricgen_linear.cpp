@@ -507,7 +507,9 @@ void FixFricgenLinear::init()
   if (force->pair_match("fricgen/linear", 1))
     error->all(FLERR, "fix fricgen/exact/linear and pair_style fricgen/linear would apply the friction of linear twice: "
                "take lj/cut for WCA with the fix, or the pair style alone");
-  neighbor->add_request(this, NeighConst::REQ_FULL);
+  // one rank: the pair style's half list (the same request: LAMMPS shares it, no second build); several: a full
+  // list, so that the rank owning a pair's lower-ID atom sees the pair
+  neighbor->add_request(this, comm->nprocs == 1 ? NeighConst::REQ_DEFAULT : NeighConst::REQ_FULL);
 }
 
 void FixFricgenLinear::init_list(int, NeighList *ptr)
@@ -549,7 +551,7 @@ void FixFricgenLinear::step_pair(const Pair &p, uint64_t key)
   double **x = atom->x, **omega = atom->omega;
   const double *radius = atom->radius, *rmass = atom->rmass;
   const int i = p.i, k = p.c;
-  const double dx = x[p.j][0] - x[i][0], dy = x[p.j][1] - x[i][1], dz = x[p.j][2] - x[i][2];
+  const double dx = x[p.xj][0] - x[p.xi][0], dy = x[p.xj][1] - x[p.xi][1], dz = x[p.xj][2] - x[p.xi][2];
   const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
   const double n[3] = {dx / r, dy / r, dz / r};
   const double ri = radius[i], rk = radius[k], sigma = ri + rk;
@@ -589,39 +591,65 @@ void FixFricgenLinear::step_pair(const Pair &p, uint64_t key)
   if (k >= atom->nlocal) touched[k] = 1;
 }
 
-// On each neighbour-list build (atoms are renumbered only then): every listed pair once, from the owned atom of
-// lower ID, in the engine's pair order (IDs sorted), so that a step only filters the contacts from it.
+// On each neighbour-list build (atoms are renumbered only then): every listed pair once, as (lower ID, higher ID),
+// in the engine's pair order (IDs sorted), so that a step only filters the contacts from it. A full list (several
+// ranks) gives each pair from its owned atom of lower ID; the half list of one rank from either atom, and a pair
+// across a periodic boundary with newton off from both (kept from the lower ID).
 void FixFricgenLinear::collect_candidates()
 {
   const tagint *tag = atom->tag;
   const int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
   const int *ilist = list->ilist, *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
-  // the owned atoms by ID, then each one's partners of higher ID by ID (a handful: insertion sort)
+  const bool full = comm->nprocs > 1, twice = !full && !force->newton_pair;
+  // the owned atoms by ID: on one rank every ID through the atom map, on several a sort of the owned atoms
   order.clear();
-  for (int ii = 0; ii < list->inum; ii++) {
-    const int i = ilist[ii];
-    if (mask[i] & groupbit) order.push_back({tag[i], ii});
-  }
-  std::sort(order.begin(), order.end());
-  candidates.clear();
-  for (const auto &owned : order) {
-    const int i = ilist[owned.second];
-    const size_t first = candidates.size();
-    for (int jj = 0; jj < numneigh[i]; jj++) {
-      const int j = firstneigh[i][jj] & NEIGHMASK;
-      if (tag[j] <= tag[i] || !(mask[j] & groupbit)) continue;
-      Pair p = {tag[i], tag[j], i, j, atom->map(tag[j]), 0, 0};
-      size_t q = candidates.size();
-      candidates.push_back(p);
-      for (; q > first && candidates[q - 1].hi > p.hi; q--) candidates[q] = candidates[q - 1];
-      candidates[q] = p;
+  if (full) {
+    for (int ii = 0; ii < list->inum; ii++) {
+      const int i = ilist[ii];
+      if (mask[i] & groupbit) order.push_back({tag[i], i});
+    }
+    std::sort(order.begin(), order.end());
+  } else {
+    for (tagint id = 1; id <= atom->map_tag_max; id++) {
+      const int i = atom->map(id);
+      if (i >= 0 && i < nlocal && (mask[i] & groupbit)) order.push_back({id, i});
     }
   }
+  place.assign(nlocal, 0);
+  for (size_t o = 0; o < order.size(); o++) place[order[o].second] = static_cast<int>(o);
+  // the pairs, counted by the place of their lower-ID atom
+  scratch.clear();
+  counts.assign(order.size() + 1, 0);
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = ilist[ii];
+    if (!(mask[i] & groupbit)) continue;
+    for (int jj = 0; jj < numneigh[i]; jj++) {
+      const int j = firstneigh[i][jj] & NEIGHMASK;
+      if (tag[j] == tag[i] || !(mask[j] & groupbit)) continue;
+      const bool up = tag[j] > tag[i];
+      if (!up && (full || (twice && j >= nlocal))) continue;
+      const Pair p = up ? Pair{tag[i], tag[j], i, atom->map(tag[j]), i, j, 0, 0} : Pair{tag[j], tag[i], atom->map(tag[j]), i, j, i, 0, 0};
+      scratch.push_back(p);
+      counts[place[p.i] + 1]++;
+    }
+  }
+  // by lower ID (counting sort), then each atom's partners by higher ID (a handful: insertion sort)
+  for (size_t o = 0; o < order.size(); o++) counts[o + 1] += counts[o];
+  candidates.resize(scratch.size());
+  for (const Pair &p : scratch) candidates[counts[place[p.i]]++] = p;
+  for (size_t o = 0, first = 0; o < order.size(); first = counts[o++])
+    for (size_t q = first + 1; q < static_cast<size_t>(counts[o]); q++) {
+      const Pair p = candidates[q];
+      size_t slot = q;
+      for (; slot > first && candidates[slot - 1].hi > p.hi; slot--) candidates[slot] = candidates[slot - 1];
+      candidates[slot] = p;
+    }
   const size_t nall = static_cast<size_t>(atom->nlocal + atom->nghost);
-  degree.assign(nall, 0);    // degree, used and touched are all zero between steps
-  touched.assign(nall, 0);
-  used.assign(nall, 0);
+  degree.resize(nall, 0);    // degree, used and touched are all zero between steps
+  touched.resize(nall, 0);
+  if (used.size() < nall) used.resize(nall, 0);
   built = neighbor->ncalls;
   check_domain();    // sub-domains change on neighbour-list builds only
 }
@@ -685,14 +713,14 @@ void FixFricgenLinear::end_of_step()
   pairs.clear();
   int most = 0;
   for (const Pair &candidate : candidates) {
-    const int i = candidate.i, j = candidate.j;
+    const int i = candidate.xi, j = candidate.xj;
     const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
     const double range = WCA_RANGE * (radius[i] + radius[j]);
     if (dx * dx + dy * dy + dz * dz >= range * range) continue;
     pairs.push_back(candidate);
     Pair &p = pairs.back();
     for (int d = 0; d < 3; d++)
-      if (split[d] && x[i][d] >= 0.5 * (domain->sublo[d] + domain->subhi[d])) p.phase += split[d];
+      if (split[d] && x[p.i][d] >= 0.5 * (domain->sublo[d] + domain->subhi[d])) p.phase += split[d];
     most = std::max(most, std::max(++degree[p.i], ++degree[p.c]));
   }
   for (const Pair &p : pairs) degree[p.i] = degree[p.c] = 0;

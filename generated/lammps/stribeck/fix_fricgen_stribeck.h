@@ -33,7 +33,8 @@ class FixFricgenStribeck : public Fix {
 
   struct Pair {
     tagint lo, hi;    // atom IDs, lo < hi
-    int i, j, c;      // owned atom of ID lo, the neighbour-list copy of hi, its canonical copy
+    int i, c;         // the canonical copies of lo (owned) and hi
+    int xi, xj;       // the neighbour-list copies of lo and hi: the pair's vector is x[xj] - x[xi]
     int phase, colour;
   };
 
@@ -46,8 +47,8 @@ class FixFricgenStribeck : public Fix {
   bigint built;                          // neighbor->ncalls when the candidates were collected
   std::vector<Pair> candidates, pairs;    // the listed pairs in ID order; this step's contacts
   std::vector<Pair> scratch;
-  std::vector<std::pair<tagint, int>> order;    // (ID, ilist index) of the owned atoms, by ID
-  std::vector<int> degree, counts;
+  std::vector<std::pair<tagint, int>> order;    // (ID, index) of the owned atoms, by ID
+  std::vector<int> place, degree, counts;       // place: an owned atom's position in order
   std::vector<uint64_t> used;
   std::vector<char> touched;
   void check_domain();
