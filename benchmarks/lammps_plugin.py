@@ -54,9 +54,10 @@ def plugin_input(folder: Path) -> str:
     return str(folder / "in.plugin")
 
 
-def lammps_output(lammps, script: str, ranks: int, steps: int, extra: list[str], cwd: Path) -> str:
-    """The screen output of LAMMPS running ``script`` (seed 1000, nrun ``steps``, the variables of ``extra``) on ``ranks`` ranks."""
-    command = [*lammps.command(ranks), "-in", script, "-var", "seed", "1000", "-var", "nrun", str(steps), "-log", "none", "-nocite", *extra]
+def lammps_output(lammps, script: str, ranks: int, steps: int, extra: list[str], cwd: Path, seed: int = 1000) -> str:
+    """The screen output of LAMMPS running ``script`` (``seed``, nrun ``steps``, the variables of ``extra``) on ``ranks`` ranks."""
+    command = [*lammps.command(ranks), "-in", script, "-var", "seed", str(seed), "-var", "nrun", str(steps)]
+    command += ["-log", "none", "-nocite", *extra]
     done = subprocess.run(command, capture_output=True, text=True, env=lammps.environment(), cwd=cwd)
     if done.returncode != 0:
         raise RuntimeError(f"{' '.join(command)} failed:\n{(done.stdout + done.stderr)[-2000:]}")
