@@ -88,29 +88,32 @@ def bridge_minimum(a, b, variance, e):
 
 
 @numba.njit(inline="always", cache=True)
-def _bridge(a, b, variance, u):
-    """The push p = max(0, -m) of the bridge from a to b with E = -ln(1 - u), and its slope dp/d(-b), which is
-    (1 + (a - b) / R) / 2 in [0, 1] (R = _spread) where it pushes and 0 where it does not; p is convex in b.
-    It pushes iff m < 0, i.e. b <= 0 or E > t = 2 a b / v; u <= t / (1 + t) implies E <= u / (1 - u) <= t,
-    which spares the logarithm of most pairs that do not touch."""
+def _bridge(a, b, variance, u, e):
+    """The push p = max(0, -m) of the bridge from a to b with E = -ln(1 - u), its slope dp/d(-b), which is
+    (1 + (a - b) / R) / 2 in [0, 1] (R = _spread) where it pushes and 0 where it does not (p is convex in b),
+    and E where it was needed. e: E if known, else negative. It pushes iff m < 0, i.e. b <= 0 or E > t = 2 a b / v;
+    u <= t / (1 + t) implies E <= u / (1 - u) <= t, which spares the logarithm of most pairs that do not touch
+    (e stays negative then)."""
     if b > 0.0:
         t = 2.0 * a * b / variance
-        if u <= t / (1.0 + t):
-            return 0.0, 0.0
-        e = -math.log1p(-u)
+        if e < 0.0:
+            if u <= t / (1.0 + t):
+                return 0.0, 0.0, e
+            e = -math.log1p(-u)
         if e <= t:
-            return 0.0, 0.0
-    else:
+            return 0.0, 0.0, e
+    elif e < 0.0:
         e = -math.log1p(-u)
     spread = _spread(a, b, variance, e)
-    return -bridge_minimum(a, b, variance, e), (0.5 + 0.5 * (a - b) / spread if spread > 0.0 else 0.5)
+    return -bridge_minimum(a, b, variance, e), (0.5 + 0.5 * (a - b) / spread if spread > 0.0 else 0.5), e
 
 
 @numba.njit(cache=True)
 def bridge_work(n):
     """The bridge layer's work arrays for n rods: (push, candidates, values); values[k] holds (a, b, u,
-    x_i + a / 2) of candidate k and three columns of the chains' Newton solve (_chain)."""
-    return np.empty(n), np.empty(n, dtype=np.int64), np.empty((n, 7))
+    x_i + a / 2) of candidate k, three columns of the chains' Newton solve (_chain) and its E = -ln(1 - u) once
+    computed (negative before), so that a chain's Newton iterations take no logarithm again."""
+    return np.empty(n), np.empty(n, dtype=np.int64), np.empty((n, 8))
 
 
 @numba.njit(inline="always", cache=True)
@@ -139,7 +142,7 @@ def _chain(first, size, count, cyclic, variance, tolerance, work):
             k = _member(first, j, count)
             i = candidates[k]
             s = 0.5 * (push[i - 1 if i > 0 else n - 1] + push[_next(i, n)])
-            phi, g = _bridge(values[k, 0], values[k, 1] - s, variance, values[k, 2])
+            phi, g, values[k, 7] = _bridge(values[k, 0], values[k, 1] - s, variance, values[k, 2], values[k, 7])
             residual = max(residual, abs(phi - push[i]))
             h, r = -0.5 * g, phi - g * s
             if j < last:  # eliminate below the diagonal (Thomas), with the last member's column as a second right side
@@ -190,7 +193,7 @@ def _pushes(x, d, length, sigma, variance, bridge_key, work):
             u = uniform(bridge_key, i)
             candidates[count] = i
             values[count, 0], values[count, 1], values[count, 2], values[count, 3] = a, b, u, x[i] + 0.5 * a
-            push[i] = _bridge(a, b, variance, u)[0]
+            push[i], _, values[count, 7] = _bridge(a, b, variance, u, -1.0)
             count += 1
     tolerance = _TOLERANCE * math.sqrt(variance)
     if count == n:  # every pair of the ring: one cyclic chain
