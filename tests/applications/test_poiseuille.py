@@ -1,7 +1,8 @@
 """The slit fit (F-43): the Stokes solution itself, recovery of a known eta and b with calibrated
 errors from synthetic noisy profiles, a wrong profile shape caught by chi^2, and the ``poiseuille``
 entry and ``profiles.png`` that ``fricgen run`` writes for a slit, and the count of contacts on the
-Coulomb branch in a hand-built configuration (directly and through a GSD file)."""
+Coulomb branch in a hand-built configuration (directly and through a GSD file), and the peculiar
+temperature per slab of a synthetic shear flow."""
 
 import json
 from types import SimpleNamespace
@@ -16,9 +17,11 @@ from fricgen.app.studies.poiseuille import (
     fit_slit_profile,
     frame_errors,
     inside,
+    slab_temperatures,
     slit_geometry,
     stokes_profile,
     trajectory_branches,
+    trajectory_samples,
 )
 from fricgen.errors import ConfigError
 from fricgen.kernels import load_law_kernels
@@ -179,3 +182,37 @@ def test_trajectory_branches_read_a_gsd_frame(tmp_path):
             writer(SimpleNamespace(state=state))
     steps, counts = trajectory_branches(path, "coulomb_newton", {"gamma_f": 6.0, "kappa_f": 5.0}, first_step=5)
     assert steps == [10] and counts == [ContactBranches(contacts=5, coulomb=3, wall_contacts=1, wall_coulomb=1)]
+
+
+def test_slab_temperatures_subtract_the_streaming_flow(tmp_path):
+    """Thermal velocities at T = 0.7 (masses 1 and 2) on a parabolic flow u_x = U (1 - 4 y^2 / L^2), spins
+    at 0.4: subtracting each slab's flow recovers T in every slab to 4 standard errors, while the
+    temperature with the flow (the negative control) exceeds it by <m u^2> / 3; trajectory_samples reads
+    the same samples back from a GSD file."""
+    rng = np.random.default_rng(3)
+    samples, length, bins, temperature, spin_temperature = 40000, 10.0, 20, 0.7, 0.4
+    y = rng.uniform(-length / 2, length / 2, samples)
+    mass = rng.choice([1.0, 2.0], samples)
+    velocity = rng.normal(size=(samples, 3)) * np.sqrt(temperature / mass)[:, None]
+    velocity[:, 0] += 1.0 - 4 * y**2 / length**2
+    omega = rng.normal(size=(samples, 3)) * np.sqrt(spin_temperature / 0.1)
+    slabs = slab_temperatures(y, velocity, omega, mass, 0.1, length, bins)
+    error = temperature * np.sqrt(2 / (3 * slabs.count))  # chi^2 with 3 count degrees of freedom
+    assert np.all(np.abs(slabs.T_peculiar - temperature) < 4 * error)
+    assert slabs.slit("T_peculiar") == pytest.approx(temperature, abs=4 * temperature * np.sqrt(2 / (3 * samples)))
+    assert slabs.slit("T_rot") == pytest.approx(spin_temperature, rel=0.02)
+    flow = np.mean(mass * (1.0 - 4 * y**2 / length**2) ** 2) / 3  # <m u^2> / 3 = 1.5 x 8 / 45
+    assert slabs.slit("T_trans") - temperature == pytest.approx(flow, abs=0.02)
+    assert np.sum(np.abs(slabs.T_trans - temperature) > 4 * error) >= bins // 2
+    assert slabs.flow[:, 0] == pytest.approx(1.0 - 4 * slabs.y**2 / length**2, abs=0.1)
+
+    particles = Particles(np.full(50, 0.5), mass[:50], np.full(50, 0.1), np.ones(50, dtype=bool))
+    position = np.column_stack([np.zeros(50), y[:50] + length / 2, np.zeros(50)])
+    state = State(position, velocity[:50], omega[:50], np.tile([1.0, 0, 0, 0], (50, 1)), np.array([4.0, length, 4.0]), 3)
+    path = tmp_path / "trajectory.gsd"
+    with GSDWriter(path, particles) as writer:
+        writer(SimpleNamespace(state=state))
+    ((y_read, v_read, omega_read, mass_read, inertia_read, length_read),) = trajectory_samples(path)
+    assert length_read == length and y_read == pytest.approx(y[:50], abs=1e-5) and v_read == pytest.approx(velocity[:50], rel=1e-6)
+    assert omega_read == pytest.approx(omega[:50], rel=1e-6) and mass_read == pytest.approx(mass[:50])
+    assert inertia_read[:, 2] == pytest.approx(0.1)

@@ -295,3 +295,68 @@ def trajectory_branches(path: str | Path, law: str, parameters: dict, first_step
                                            p.typeid == 0, frame.configuration.box[:3], kernels, values))  # fmt: skip
             steps.append(int(frame.configuration.step))
     return steps, counts
+
+
+@dataclass(frozen=True)
+class SlabTemperatures:
+    """The temperatures of a slit in ``bins`` equal slabs along y (slab j spans [j, j + 1) L_y / bins from
+    -L_y / 2, as the velocity profile's), pooled over samples (particle and frame): per slab the number
+    of samples ``count``, the streaming velocity ``flow`` u_j = sum m v / sum m (sigma/t0, one row per
+    slab) and, in kT, ``T_trans`` = <m |v|^2> / d (with the flow), ``T_peculiar`` = <m |v - u_j|^2> / d
+    times count / (count - 1) (u_j is estimated from the same samples) and ``T_rot`` = <I |omega|^2> / d_rot,
+    averaged over the d (d_rot) components; NaN where a slab has fewer than two samples."""
+
+    y: np.ndarray
+    count: np.ndarray
+    flow: np.ndarray
+    T_trans: np.ndarray
+    T_peculiar: np.ndarray
+    T_rot: np.ndarray
+
+    def slit(self, key: str) -> float:
+        """The sample-weighted mean of a temperature over the slabs (the whole slit)."""
+        values, used = getattr(self, key), self.count > 1
+        return float(np.sum(values[used] * self.count[used]) / np.sum(self.count[used]))
+
+
+def slab_temperatures(y, velocity, omega, mass, inertia, length: float, bins: int) -> SlabTemperatures:
+    """:class:`SlabTemperatures` of samples at heights ``y`` (sigma, in [-length / 2, length / 2)) with
+    velocities (S, d) [sigma/t0], spins (S, d_rot) [1/t0], masses (S,) [m] and moments of inertia
+    (a number, (S,) or (S, d_rot)) [m sigma^2]; ``length`` = L_y."""
+    y, velocity, omega, mass = (np.asarray(a, dtype=float) for a in (y, velocity, omega, mass))
+    inertia = np.asarray(inertia, dtype=float)
+    inertia = inertia if inertia.ndim == 2 else np.broadcast_to(inertia, len(y))[:, None]
+    slab = np.clip(((y / length + 0.5) * bins).astype(int), 0, bins - 1)
+    count = np.bincount(slab, minlength=bins).astype(float)
+    used = np.where(count > 1, count, np.nan)
+    weight = np.bincount(slab, mass, bins)
+    flow = np.stack([np.bincount(slab, mass * v, bins) for v in velocity.T], axis=1) / np.where(count > 1, weight, np.nan)[:, None]
+    peculiar = velocity - flow[slab]
+    dims = velocity.shape[1]
+
+    def slab_mean(values: np.ndarray) -> np.ndarray:
+        return np.bincount(slab, values, bins) / used
+
+    return SlabTemperatures(
+        y=(np.arange(bins) + 0.5) * length / bins - length / 2,
+        count=count,
+        flow=flow,
+        T_trans=slab_mean(mass * np.sum(velocity**2, axis=1)) / dims,
+        T_peculiar=slab_mean(mass * np.sum(peculiar**2, axis=1)) / dims * used / (used - 1),
+        T_rot=slab_mean(np.sum(inertia * omega**2, axis=1)) / omega.shape[1],
+    )
+
+
+def trajectory_samples(path: str | Path, first_step: int = 0) -> list[tuple]:
+    """Per frame at steps >= ``first_step`` of a fricgen GSD trajectory, its mobile particles (type 0)
+    as (y, velocity, omega, mass, moment of inertia), and L_y last: the arguments of
+    :func:`slab_temperatures` but ``bins``."""
+    frames = []
+    with gsd.hoomd.open(str(path), "r") as trajectory:
+        for frame in trajectory:
+            if int(frame.configuration.step) < first_step:
+                continue
+            p, mobile = frame.particles, frame.particles.typeid == 0
+            omega, length = frame.log["particles/angular_velocity"][mobile], float(frame.configuration.box[1])
+            frames.append((p.position[mobile, 1], p.velocity[mobile], omega, p.mass[mobile], p.moment_inertia[mobile], length))
+    return frames
