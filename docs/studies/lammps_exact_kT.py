@@ -10,9 +10,11 @@ errors from 20 blocks. Verdict per run: |T - 1| < 0.5 % and < 4 errors.
 
 With WCA (lj/cut) as the templates ship: the fix with and without its solvent, and as the negative control
 the explicit plugin (pair style fricgen/<law>, the first-order kick) at the same dt = 5e-3, 2-D and 3-D,
-no solvent. And 1 against 2 ranks (free flight, 2-D, coulomb_newton, --rank-steps sampled steps each).
+no solvent. And 1, 2 and 4 ranks (free flight, 2-D, coulomb_newton, --rank-steps sampled steps each; 4 ranks
+as 2 x 2 sub-domains, oversubscribed on a 2-core machine, which changes the time and not the result).
 
 Run: python docs/studies/lammps_exact_kT.py [--steps 20000] [--rank-steps 20000] [--rows free,ranks,wca]
+     [--rank-counts 1,2,4]
 (writes docs/studies/results/lammps_exact_kT.json; the runs of a call replace those of the same kind)
 """
 
@@ -132,8 +134,9 @@ def verdict(result: dict) -> bool:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--steps", type=int, default=20000, help="sampled steps per run (after 2000)")
-    parser.add_argument("--rank-steps", type=int, default=20000, help="sampled steps of the 1- and 2-rank pair")
-    parser.add_argument("--rows", default="free,ranks,wca", help="which runs: free (every law in free flight), ranks (1 and 2 ranks), wca")
+    parser.add_argument("--rank-steps", type=int, default=20000, help="sampled steps of the rank-count runs")
+    parser.add_argument("--rank-counts", default="1,2,4", help="the rank counts of the ranks rows")
+    parser.add_argument("--rows", default="free,ranks,wca", help="which runs: free (every law in free flight), ranks, wca")
     options = parser.parse_args()
     lammps = locate_lammps()
     work = Path(tempfile.mkdtemp(prefix="fricgen-kT-"))
@@ -167,7 +170,7 @@ def main() -> None:
                 for solvent in (0, 1):
                     record("fix, free flight", law, dim, solvent, 1, script(law, dim, built, solvent, options.steps, NO_FORCE))
     if "ranks" in chosen:
-        for ranks in (1, 2):
+        for ranks in (int(count) for count in options.rank_counts.split(",")):
             text = script("coulomb_newton", 2, built, 0, options.rank_steps, NO_FORCE)
             record("fix, free flight", "coulomb_newton", 2, 0, ranks, text, options.rank_steps)
     if "wca" in chosen:
