@@ -87,17 +87,21 @@ def pooled(runs: list[dict[str, Estimate]]) -> dict[str, Estimate]:
     return out
 
 
+def deviations(found: dict[str, Estimate]) -> list[tuple[float, float]]:
+    """(|T - kT| / kT, 2 sigma / kT) of T_trans and T_rot."""
+    return [(abs(found[t].mean - KT) / KT, 2 * found[t].error / KT) for t in ("T_trans", "T_rot")]
+
+
 def deviation(found: dict[str, Estimate]) -> float:
     """d = max(|T_trans - kT|, |T_rot - kT|) / kT."""
-    return max(abs(found[t].mean - KT) / KT for t in ("T_trans", "T_rot"))
+    return max(d for d, _ in deviations(found))
 
 
 def verdict(found: dict[str, Estimate]) -> str:
     """within, off or undecided (module docstring) for T_trans and T_rot together."""
-    deviations = [(abs(found[t].mean - KT) / KT, 2 * found[t].error / KT) for t in ("T_trans", "T_rot")]
-    if all(d + s <= TOLERANCE for d, s in deviations):
+    if all(d + s <= TOLERANCE for d, s in deviations(found)):
         return "within"
-    if any(d - s > TOLERANCE for d, s in deviations):
+    if any(d - s > TOLERANCE for d, s in deviations(found)):
         return "off"
     return "undecided"
 
