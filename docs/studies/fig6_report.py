@@ -13,8 +13,13 @@ the seeds at the same parameters): a weighted straight line in log10 of the para
 decade, its error, slope / error) and the chi^2 of a constant with its p-value, for eta and b against
 gamma_f (kappa_f = 5, delta_w = 0) and kappa_f (gamma_f = 6, delta_w = 0); against delta_w
 (gamma_f = 6, kappa_f = 5) the differences of neighbouring points in units of their combined error.
-Points with two seeds give the seed differences in units of the combined frame errors, and the chi^2
-of one eta over all gamma_f = 6 runs tests the frame errors across runs. Each run is also refitted
+Where a point was run with several seeds (and, at delta_w > 0, so with several wall realizations:
+the roughness is drawn from the seed), the seeds' scatter tests the frame errors: per point the
+seeds' mean and standard error, and the chi^2 of the seeds about their weighted mean; pooled over the
+points, sqrt(chi^2 / dof) is the factor by which the frame errors are scaled up (never down) for the
+trends (:func:`seed_scatter`). Runs at another dt than DT (the time-step check) are compared with the
+seed mean at their parameters and kept out of the trends. The chi^2 of one eta over all gamma_f = 6
+runs tests the errors across runs. Each run is also refitted
 without the slabs within MARGIN = 1 sigma of the walls, and its frame errors are recomputed with 40,
 10 and 5 blocks instead of 20 (:func:`refit`; y_B, n, F unchanged).
 
@@ -23,6 +28,11 @@ kappa_f and delta_w). Usage (from the folder that holds the sweep's output)::
 
     nice -n 10 python docs/studies/fig6_report.py out/fig6/*/ --results docs/studies/results
 
+``--earlier FILE`` adds the rows of a fig6.json written before (runs whose folders are gone; a run
+analysed now replaces its earlier row), e.g. fig6_seeds.toml's folders with fig6.toml's rows::
+
+    python docs/studies/fig6_report.py out/fig6_seeds/*/ --earlier docs/studies/results/fig6.json
+
 Folders without summary.json (still running) are listed as not finished and skipped (the command
 line and the run log's attempts as in docs/studies/report.py, the Fig. 7 report). Units: sigma = 1,
 kT = 1, m = 1, t0; eta in kT t0 / sigma^3, b in sigma.
@@ -30,7 +40,9 @@ kT = 1, m = 1, t0; eta in kT t0 / sigma^3, b in sigma.
 
 from __future__ import annotations
 
+import argparse
 import json
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -45,12 +57,16 @@ DEFAULT = ("out/fig6/*/",)
 MARGIN = 1.0
 #: The block counts of the frame errors compared (the runs' own: 20 blocks).
 BLOCKS = (40, 10, 5)
+#: The time step of the trends (t0); runs at another dt check it.
+DT = 1e-3
 #: The series of the figure and the trends: the parameter varied, and the others held fixed.
 SERIES = {
-    "gamma_f": {"kappa_f": 5.0, "roughness": 0.0},
-    "kappa_f": {"gamma_f": 6.0, "roughness": 0.0},
-    "roughness": {"gamma_f": 6.0, "kappa_f": 5.0},
+    "gamma_f": {"kappa_f": 5.0, "roughness": 0.0, "dt": DT},
+    "kappa_f": {"gamma_f": 6.0, "roughness": 0.0, "dt": DT},
+    "roughness": {"gamma_f": 6.0, "kappa_f": 5.0, "dt": DT},
 }
+#: What makes runs repeats of one point (they differ in the seed only).
+POINT = ("gamma_f", "kappa_f", "roughness", "dt")
 LABELS = {"gamma_f": r"$\gamma_f$ ($\sqrt{m k_BT}/\sigma$)", "kappa_f": r"$\kappa_f$", "roughness": r"$\delta_w$ ($\sigma$)"}
 
 
@@ -90,6 +106,7 @@ def analyse(folder: Path) -> dict:
         "kappa_f": law["parameters"]["kappa_f"],
         "roughness": config["walls"]["roughness"],
         "seed": config["run"]["seed"],
+        "dt": config["thermostat"]["dt"],
         "n": summary["n"],
         "walls": summary["walls"],
         "box": summary["box"],
@@ -117,15 +134,16 @@ def analyse(folder: Path) -> dict:
     }
 
 
-def combined(points: list[dict], key: str) -> tuple[float, float]:
-    """Inverse-variance mean of ``key`` over points (seeds) with errors ``key_err``, and its error."""
+def combined(points: list[dict], key: str, scale: float = 1.0) -> tuple[float, float]:
+    """Inverse-variance mean of ``key`` over points (seeds) with errors ``scale`` x ``key_err``, and its error."""
     values, errors = (np.array([p[k] for p in points]) for k in (key, f"{key}_err"))
-    weights = errors**-2
+    weights = (scale * errors) ** -2
     return float(np.sum(weights * values) / weights.sum()), float(weights.sum() ** -0.5)
 
 
-def series(runs: list[dict], name: str) -> list[dict]:
-    """The seed-averaged points of the series varying ``name`` (SERIES), sorted by it."""
+def series(runs: list[dict], name: str, scale: dict[str, float] | None = None) -> list[dict]:
+    """The seed-averaged points of the series varying ``name`` (SERIES), sorted by it; the frame errors
+    of ``key`` scaled by ``scale[key]`` (:func:`seed_scatter`; 1 if not given)."""
     fixed = SERIES[name]
     chosen = [r for r in runs if all(r[k] == v for k, v in fixed.items())]
     points = []
@@ -133,7 +151,7 @@ def series(runs: list[dict], name: str) -> list[dict]:
         seeds = [r for r in chosen if r[name] == x]
         point = {name: x, "seeds": [r["seed"] for r in seeds]}
         for key in ("eta", "slip"):
-            point[key], point[f"{key}_err"] = combined(seeds, key)
+            point[key], point[f"{key}_err"] = combined(seeds, key, (scale or {}).get(key, 1.0))
         points.append(point)
     return points
 
@@ -168,34 +186,54 @@ def steps(points: list[dict], name: str, key: str) -> list[dict]:
     return rows
 
 
-def seed_pairs(runs: list[dict]) -> list[dict]:
-    """For parameters run with several seeds: seed 2 - seed 1 of eta and b in units of the combined
-    frame errors (and of the per-bin fit errors)."""
-    rows = []
+def seed_scatter(runs: list[dict]) -> dict:
+    """The points run with several seeds (POINT equal): per point and for eta and b the seeds' mean, its
+    standard error from their scatter, the frame error of their weighted mean, and the chi^2 of the seeds
+    about that mean with the frame errors; pooled over the points, chi^2, dof, p and the factor
+    max(1, sqrt(chi^2 / dof)) by which the frame errors are scaled for the trends."""
+    groups: dict[tuple, list[dict]] = {}
     for run in runs:
-        if run["seed"] == 1:
+        groups.setdefault(tuple(run[k] for k in POINT), []).append(run)
+    points = [dict(zip(POINT, key)) | {"runs": [r["run"] for r in seeds]} for key, seeds in groups.items() if len(seeds) > 1]
+    pooled = {}
+    for key in ("eta", "slip"):
+        total, dof = 0.0, 0
+        for point in points:
+            seeds = groups[tuple(point[k] for k in POINT)]
+            values, errors = np.array([r[key] for r in seeds]), np.array([r[f"{key}_err"] for r in seeds])
+            mean, error = combined(seeds, key)
+            chi2 = float(np.sum(((values - mean) / errors) ** 2))
+            point[key] = {"mean": float(values.mean()), "seed_error": float(values.std(ddof=1) / np.sqrt(values.size)),
+                          "frame_error": error, "chi2": chi2}  # fmt: skip
+            total, dof = total + chi2, dof + values.size - 1
+        pooled[key] = {"chi2": total, "dof": dof, "p": float(chi2_distribution.sf(total, dof)), "scale": max(1.0, float(np.sqrt(total / dof)))}
+    return {"points": points, "pooled": pooled}
+
+
+def time_step_check(runs: list[dict], scale: dict[str, float]) -> list[dict]:
+    """Each run at another dt than DT against the seeds at DT with its other parameters: the difference of
+    eta and b, its error (both sides' frame errors scaled by ``scale``) and the difference over it."""
+    rows = []
+    for run in (r for r in runs if r["dt"] != DT):
+        twins = [r for r in runs if r["dt"] == DT and all(r[k] == run[k] for k in POINT if k != "dt")]
+        if not twins:
             continue
-        twin = next((r for r in runs if r["seed"] == 1 and all(r[k] == run[k] for k in SERIES)), None)
-        if twin is None:
-            continue
-        row = {"runs": [twin["run"], run["run"]]}
+        row = {"run": run["run"], "dt": run["dt"], "against": [r["run"] for r in twins]}
         for key in ("eta", "slip"):
-            difference = run[key] - twin[key]
-            row[key] = {
-                "difference": difference,
-                "z_frames": difference / float(np.hypot(run[f"{key}_err"], twin[f"{key}_err"])),
-                "z_bins": difference / float(np.hypot(run[f"{key}_err_bins"], twin[f"{key}_err_bins"])),
-            }
+            mean, error = combined(twins, key, scale[key])
+            difference, total = run[key] - mean, float(np.hypot(error, scale[key] * run[f"{key}_err"]))
+            row[key] = {"difference": difference, "error": total, "z": difference / total}
         rows.append(row)
     return rows
 
 
-def scatter(runs: list[dict], which: str | None = None) -> dict:
-    """chi^2 of one constant eta over the gamma_f = 6 runs (kappa_f, delta_w and seeds varied; the paper's
+def scatter(runs: list[dict], which: str | None = None, scale: float = 1.0) -> dict:
+    """chi^2 of one constant eta over the gamma_f = 6 runs at DT (kappa_f, delta_w and seeds varied; the paper's
     eta depends on none of them), with the frame errors: a test of those errors and of the fit.
-    ``which``: None for the runs' own fit, "inner" or a block count of ``blocks`` for a refit."""
-    chosen = [r if which is None else r["inner"] if which == "inner" else r["blocks"][which] for r in runs if r["gamma_f"] == 6.0]
-    y, e = np.array([r["eta"] for r in chosen]), np.array([r["eta_err"] for r in chosen])
+    ``which``: None for the runs' own fit, "inner" or a block count of ``blocks`` for a refit; the errors
+    scaled by ``scale`` (:func:`seed_scatter`)."""
+    chosen = [r if which is None else r["inner"] if which == "inner" else r["blocks"][which] for r in runs if r["gamma_f"] == 6.0 and r["dt"] == DT]
+    y, e = np.array([r["eta"] for r in chosen]), scale * np.array([r["eta_err"] for r in chosen])
     mean = np.sum(y / e**2) / np.sum(e**-2)
     chi2 = float(np.sum(((y - mean) / e) ** 2))
     dof = len(chosen) - 1
@@ -205,8 +243,9 @@ def scatter(runs: list[dict], which: str | None = None) -> dict:
 
 def figure(runs: list[dict], path: Path) -> Path:
     """b (top), eta (middle) and the Coulomb-branch fraction (bottom) against gamma_f, kappa_f and
-    delta_w (columns); filled circles seed 1, open squares seed 2 (shifted a little to the right);
-    grey: the fit without the slabs within MARGIN of the walls (:func:`refit`)."""
+    delta_w (columns), at DT; filled circles seed 1, open squares seed 2, open triangles seed 3 (each
+    shifted a little to the right of the one before); grey: the fit without the slabs within MARGIN of
+    the walls (:func:`refit`); errors: the runs' frame errors."""
     figure = Figure(figsize=(11, 8.5), layout="constrained")
     axes = figure.subplots(3, 3, sharex="col")
     rows = (("slip", r"slip length $b$ ($\sigma$)"), ("eta", r"$\eta$ ($k_BT t_0/\sigma^3$)"), ("coulomb_fraction", "Coulomb branch"))
@@ -215,13 +254,13 @@ def figure(runs: list[dict], path: Path) -> Path:
         chosen = [r for r in runs if all(r[k] == v for k, v in fixed.items())]
         for row, (key, label) in enumerate(rows):
             axis = axes[row, column]
-            for seed, marker in ((1, "o"), (2, "s")):
+            for seed, marker in ((1, "o"), (2, "s"), (3, "^")):
                 points = sorted((r for r in chosen if r["seed"] == seed), key=lambda r: r[name])
                 if not points:
                     continue
                 x = np.array([r[name] for r in points])
-                if seed == 2:  # beside seed 1: 6 % to the right on a log axis, 0.004 on the linear one
-                    x = x + 0.004 if name == "roughness" else x * 1.06
+                # beside the seed before: 6 % to the right on a log axis, 0.004 on the linear one
+                x = x + 0.004 * (seed - 1) if name == "roughness" else x * 1.06 ** (seed - 1)
                 face = "C0" if seed == 1 else "none"
                 if key == "coulomb_fraction":
                     for k, colour, text in (("coulomb_fraction", "C0", "all contacts"), ("wall_coulomb_fraction", "C3", "wall contacts")):
@@ -234,18 +273,18 @@ def figure(runs: list[dict], path: Path) -> Path:
                     y, e = np.array([r["inner"][key] for r in points]), np.array([r["inner"][f"{key}_err"] for r in points])
                     inner = f"without the slabs within {MARGIN:g} of the walls" if seed == 1 else None
                     beside = x * 1.03 if name != "roughness" else x + 0.002
-                    axis.errorbar(beside, y, e, fmt=marker, color="0.6", mfc=face if seed == 2 else "0.6", capsize=2, ms=4, label=inner)
+                    axis.errorbar(beside, y, e, fmt=marker, color="0.6", mfc="0.6" if seed == 1 else "none", capsize=2, ms=4, label=inner)
             if name != "roughness":
                 axis.set_xscale("log")
             if column == 0:
                 axis.set_ylabel(label)
             if row == 2:
                 axis.set_xlabel(LABELS[name])
-        fixed_text = ", ".join(f"{LABELS[k].split(' (')[0]} = {v:g}" for k, v in fixed.items())
+        fixed_text = ", ".join(f"{LABELS[k].split(' (')[0]} = {v:g}" for k, v in fixed.items() if k in LABELS)
         axes[0, column].set_title(fixed_text, fontsize=9)
     axes[0, 0].legend(frameon=False, fontsize=8)
     axes[2, 0].legend(frameon=False, fontsize=7)
-    figure.suptitle("Fig. 6 of Hofmann et al. 2025: N = 1318, L_x = 20, F = 0.02, 650 t0 of data per point (frame errors)")
+    figure.suptitle(f"Fig. 6 of Hofmann et al. 2025: N = 1318, L_x = 20, F = 0.02, dt = {DT:g}, 650 t0 of data per point (frame errors)")
     figure.savefig(path, dpi=80)
     return path
 
@@ -277,24 +316,34 @@ def table_row(run: dict) -> str:
 
 def main(argv: list[str] | None = None) -> None:
     """Analyse the folders given (default: out/fig6/*/), write fig6.json and fig6.png, print the table."""
-    args = arguments(argv, __doc__.splitlines()[0], DEFAULT)
+    earlier = argparse.ArgumentParser(add_help=False)
+    earlier.add_argument("--earlier", type=Path, help="a fig6.json written before: its runs are added (a run analysed now replaces its row)")
+    known, rest = earlier.parse_known_args(sys.argv[1:] if argv is None else argv)
+    args = arguments(rest, __doc__.splitlines()[0], DEFAULT)
     runs, pending = finished_runs(args.folders, analyse)
+    if known.earlier is not None:
+        names = {r["run"] for r in runs}
+        runs = [r for r in json.loads(known.earlier.read_text())["runs"] if r["run"] not in names] + runs
+    seeds = seed_scatter(runs)
+    scale = {key: seeds["pooled"][key]["scale"] for key in ("eta", "slip")}
     trends = {}
     for name in ("gamma_f", "kappa_f"):
-        points = series(runs, name)
+        points = series(runs, name, scale)
         if len(points) >= 2:
             trends[name] = {"points": points, "eta": trend(points, name, "eta"), "slip": trend(points, name, "slip")}
-    points = series(runs, "roughness")
+    points = series(runs, "roughness", scale)
     trends["roughness"] = {"points": points, "eta": steps(points, "roughness", "eta"), "slip": steps(points, "roughness", "slip")}
     args.results.mkdir(parents=True, exist_ok=True)
     spread = {"all slabs": scatter(runs), "inner slabs": scatter(runs, "inner")}
     spread |= {f"{b} blocks": scatter(runs, str(b)) for b in BLOCKS}
-    record = {"runs": runs, "trends": trends, "seeds": seed_pairs(runs), "eta_scatter": spread, "not_finished": pending}
+    spread["all slabs, errors scaled"] = scatter(runs, scale=scale["eta"])
+    record = {"runs": runs, "error_scale": scale, "trends": trends, "seeds": seeds, "time_step": time_step_check(runs, scale),
+              "eta_scatter": spread, "not_finished": pending}  # fmt: skip
     (args.results / "fig6.json").write_text(json.dumps(record, indent=1) + "\n")
     figure(runs, args.results / "fig6.png")
     for run in runs:
         print(table_row(run))
-    print(json.dumps({"trends": trends, "seeds": record["seeds"], "eta_scatter": spread}, indent=1))
+    print(json.dumps({key: record[key] for key in ("error_scale", "trends", "seeds", "time_step", "eta_scatter")}, indent=1))
     print("not finished:", pending)
 
 
