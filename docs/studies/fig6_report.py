@@ -206,7 +206,8 @@ def seed_scatter(runs: list[dict]) -> dict:
             point[key] = {"mean": float(values.mean()), "seed_error": float(values.std(ddof=1) / np.sqrt(values.size)),
                           "frame_error": error, "chi2": chi2}  # fmt: skip
             total, dof = total + chi2, dof + values.size - 1
-        pooled[key] = {"chi2": total, "dof": dof, "p": float(chi2_distribution.sf(total, dof)), "scale": max(1.0, float(np.sqrt(total / dof)))}
+        scale = max(1.0, float(np.sqrt(total / dof)))
+        pooled[key] = {"chi2": total, "dof": dof, "p": float(chi2_distribution.sf(total, dof)), "scale": scale}
     return {"points": points, "pooled": pooled}
 
 
@@ -232,7 +233,8 @@ def scatter(runs: list[dict], which: str | None = None, scale: float = 1.0) -> d
     eta depends on none of them), with the frame errors: a test of those errors and of the fit.
     ``which``: None for the runs' own fit, "inner" or a block count of ``blocks`` for a refit; the errors
     scaled by ``scale`` (:func:`seed_scatter`)."""
-    chosen = [r if which is None else r["inner"] if which == "inner" else r["blocks"][which] for r in runs if r["gamma_f"] == 6.0 and r["dt"] == DT]
+    chosen = [r for r in runs if r["gamma_f"] == 6.0 and r["dt"] == DT]
+    chosen = [r if which is None else r["inner"] if which == "inner" else r["blocks"][which] for r in chosen]
     y, e = np.array([r["eta"] for r in chosen]), scale * np.array([r["eta_err"] for r in chosen])
     mean = np.sum(y / e**2) / np.sum(e**-2)
     chi2 = float(np.sum(((y - mean) / e) ** 2))
@@ -317,7 +319,7 @@ def table_row(run: dict) -> str:
 def main(argv: list[str] | None = None) -> None:
     """Analyse the folders given (default: out/fig6/*/), write fig6.json and fig6.png, print the table."""
     earlier = argparse.ArgumentParser(add_help=False)
-    earlier.add_argument("--earlier", type=Path, help="a fig6.json written before: its runs are added (a run analysed now replaces its row)")
+    earlier.add_argument("--earlier", type=Path, help="a fig6.json written before: its runs are added (a run analysed now replaces its)")
     known, rest = earlier.parse_known_args(sys.argv[1:] if argv is None else argv)
     args = arguments(rest, __doc__.splitlines()[0], DEFAULT)
     runs, pending = finished_runs(args.folders, analyse)
