@@ -135,17 +135,22 @@ def analyse(folder: Path) -> dict:
 
 
 def dip_figure(runs: list[dict], path: Path) -> Path:
-    """The dip ratio of each frame against time, one panel for runs from a lattice, one for cross-starts.
+    """The dip ratio of each frame against time: a panel for runs from a lattice and, where there are any,
+    one for cross-starts.
 
     Colour: the model; line style: the seed (1 solid, 2 dashed, 3 dotted). A frame with no second
     maximum 0.2 away (no dip) is drawn at 1 with an open marker; the black dashed line is the strict
     threshold 0.5.
     """
-    figure = Figure(figsize=(11, 4.6), layout="constrained")
-    panels = figure.subplots(1, 2, sharey=True)
-    titles = ("from a lattice (N = 2000, area fraction 0.5)", "cross-starts (time since the restart)")
+    groups = [r for r in runs if not r["initial"]], [r for r in runs if r["initial"]]
+    sizes = ", ".join(f"{n:g}" for n in sorted({r["n"] for r in groups[0]}))
+    fractions = ", ".join(f"{phi:g}" for phi in sorted({r["packing_fraction"] for r in groups[0]}))
+    titles = (f"from a lattice (N = {sizes}, area fraction {fractions})", "cross-starts (time since the restart)")
+    count = 2 if groups[1] else 1
+    figure = Figure(figsize=(5.5 * count, 4.6), layout="constrained")
+    panels = np.atleast_1d(figure.subplots(1, count, sharey=True))
     colours = {"no noise": "C1", "consistent": "C0", "no friction": "C2"}
-    for axis, title, group in zip(panels, titles, ([r for r in runs if not r["initial"]], [r for r in runs if r["initial"]])):
+    for axis, title, group in zip(panels, titles, groups):
         for run in group:
             colour, style = colours[run["model"]], ("-", "--", ":")[(run["seed"] - 1) % 3]
             t = np.array([row["t"] for row in run["series"]])
