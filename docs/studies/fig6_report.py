@@ -42,7 +42,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -134,11 +133,17 @@ def analyse(folder: Path) -> dict:
     }
 
 
+def constant(values: np.ndarray, errors: np.ndarray) -> tuple[float, float, float]:
+    """The inverse-variance mean of ``values`` with ``errors``, its error, and the chi^2 of that constant."""
+    weights = errors**-2
+    mean = float(np.sum(weights * values) / weights.sum())
+    return mean, float(weights.sum() ** -0.5), float(np.sum(((values - mean) / errors) ** 2))
+
+
 def combined(points: list[dict], key: str, scale: float = 1.0) -> tuple[float, float]:
     """Inverse-variance mean of ``key`` over points (seeds) with errors ``scale`` x ``key_err``, and its error."""
     values, errors = (np.array([p[k] for p in points]) for k in (key, f"{key}_err"))
-    weights = (scale * errors) ** -2
-    return float(np.sum(weights * values) / weights.sum()), float(weights.sum() ** -0.5)
+    return constant(values, scale * errors)[:2]
 
 
 def series(runs: list[dict], name: str, scale: dict[str, float] | None = None) -> list[dict]:
@@ -165,8 +170,7 @@ def trend(points: list[dict], name: str, key: str) -> dict:
     covariance = np.linalg.inv(design.T @ design)
     _, slope = covariance @ design.T @ (y / e)
     slope_err = float(np.sqrt(covariance[1, 1]))
-    mean = np.sum(y / e**2) / np.sum(e**-2)
-    chi2 = float(np.sum(((y - mean) / e) ** 2))
+    chi2 = constant(y, e)[2]
     return {
         "slope_per_decade": float(slope),
         "slope_err": slope_err,
@@ -194,15 +198,14 @@ def seed_scatter(runs: list[dict]) -> dict:
     groups: dict[tuple, list[dict]] = {}
     for run in runs:
         groups.setdefault(tuple(run[k] for k in POINT), []).append(run)
-    points = [dict(zip(POINT, key)) | {"runs": [r["run"] for r in seeds]} for key, seeds in groups.items() if len(seeds) > 1]
+    repeated = [seeds for seeds in groups.values() if len(seeds) > 1]
+    points = [{k: seeds[0][k] for k in POINT} | {"runs": [r["run"] for r in seeds]} for seeds in repeated]
     pooled = {}
     for key in ("eta", "slip"):
         total, dof = 0.0, 0
-        for point in points:
-            seeds = groups[tuple(point[k] for k in POINT)]
+        for point, seeds in zip(points, repeated):
             values, errors = np.array([r[key] for r in seeds]), np.array([r[f"{key}_err"] for r in seeds])
-            mean, error = combined(seeds, key)
-            chi2 = float(np.sum(((values - mean) / errors) ** 2))
+            _, error, chi2 = constant(values, errors)
             point[key] = {"mean": float(values.mean()), "seed_error": float(values.std(ddof=1) / np.sqrt(values.size)),
                           "frame_error": error, "chi2": chi2}  # fmt: skip
             total, dof = total + chi2, dof + values.size - 1
@@ -236,8 +239,7 @@ def scatter(runs: list[dict], which: str | None = None, scale: float = 1.0) -> d
     chosen = [r for r in runs if r["gamma_f"] == 6.0 and r["dt"] == DT]
     chosen = [r if which is None else r["inner"] if which == "inner" else r["blocks"][which] for r in chosen]
     y, e = np.array([r["eta"] for r in chosen]), scale * np.array([r["eta_err"] for r in chosen])
-    mean = np.sum(y / e**2) / np.sum(e**-2)
-    chi2 = float(np.sum(((y - mean) / e) ** 2))
+    mean, _, chi2 = constant(y, e)
     dof = len(chosen) - 1
     return {"runs": len(chosen), "mean": float(mean), "chi2": chi2, "dof": dof, "p": float(chi2_distribution.sf(chi2, dof)),
             "spread": float(y.std(ddof=1)), "rms_error": float(np.sqrt(np.mean(e**2)))}  # fmt: skip
@@ -320,12 +322,11 @@ def main(argv: list[str] | None = None) -> None:
     """Analyse the folders given (default: out/fig6/*/), write fig6.json and fig6.png, print the table."""
     earlier = argparse.ArgumentParser(add_help=False)
     earlier.add_argument("--earlier", type=Path, help="a fig6.json written before: its runs are added (a run analysed now replaces its)")
-    known, rest = earlier.parse_known_args(sys.argv[1:] if argv is None else argv)
-    args = arguments(rest, __doc__.splitlines()[0], DEFAULT)
+    args = arguments(argv, __doc__.splitlines()[0], DEFAULT, parents=(earlier,))
     runs, pending = finished_runs(args.folders, analyse)
-    if known.earlier is not None:
+    if args.earlier is not None:
         names = {r["run"] for r in runs}
-        runs = [r for r in json.loads(known.earlier.read_text())["runs"] if r["run"] not in names] + runs
+        runs = [r for r in json.loads(args.earlier.read_text())["runs"] if r["run"] not in names] + runs
     seeds = seed_scatter(runs)
     scale = {key: seeds["pooled"][key]["scale"] for key in ("eta", "slip")}
     trends = {}

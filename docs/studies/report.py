@@ -193,11 +193,13 @@ def table_row(run: dict) -> str:
     return "| " + " | ".join(str(cell) for cell in cells) + " |"
 
 
-def arguments(argv: list[str] | None, description: str, default: tuple[str, ...], name: str | None = None) -> argparse.Namespace:
+def arguments(
+    argv: list[str] | None, description: str, default: tuple[str, ...], name: str | None = None, parents: tuple = ()
+) -> argparse.Namespace:
     """The command line of a report script: ``folders`` (the glob patterns ``default`` when none are
-    given), ``--results`` (default: results/ beside this file) and, where ``name`` is given, ``--name``
-    (the stem of the files written, default ``name``)."""
-    parser = argparse.ArgumentParser(description=description)
+    given), ``--results`` (default: results/ beside this file), where ``name`` is given ``--name``
+    (the stem of the files written, default ``name``), and the options of the ``parents`` parsers."""
+    parser = argparse.ArgumentParser(description=description, parents=list(parents))
     parser.add_argument("folders", nargs="*", help=f"run folders (default: {' '.join(default)})")
     parser.add_argument("--results", type=Path, default=Path(__file__).parent / "results")
     if name is not None:
