@@ -57,7 +57,7 @@ METHODS = {"merge": ("merge", "euler"), "bridge": ("bridge", "euler"), "bridge+l
 CANDIDATES = {
     "merge": (3e-5, 1e-5, 2.5e-6, 1e-6, 3e-7),
     "bridge": (1e-3, 3e-4, 1.5e-4, 1e-4, 3e-5),
-    "bridge+lm": (1e-3, 5e-4, 3e-4, 2e-4, 1.5e-4, 1e-4),
+    "bridge+lm": (2e-3, 1e-3, 5e-4, 3e-4, 2e-4, 1.5e-4, 1e-4),
 }
 REACHES = ("merge", 3e-5)  # merge's largest step that reaches a 1 % profile (through its bias), issue 30
 STUDY = 1.25  # sampled time units of the standard study

@@ -29,9 +29,10 @@ sticky boundary of fricgen.rods.sticky instead: bonded pairs (gaps <= CONTACT_TO
 gap bin 0.
 
 The field's drift (Stepping.drift): EULER evaluates the forces at x; LM (Leimkuhler-Matthews, with the bridge
-layer) at the midpoint of the step's noise, q = x + delta with delta = sqrt(2 D dt) N / 2 and the hard core
-restored by the bridge, then moves x by mu F(q) dt + 2 delta with the bridge and samples the rods at q
-(second order for the profile away from contacts).
+layer, hard rods) at the midpoint of the step's noise, q = x + delta with delta = sqrt(2 D dt) N / 2, where the
+hard core is not restored (each rod's law at q is its law at x convolved with a Gaussian, the LM correction of the
+one-body profile), then moves x by mu F(q) dt + 2 delta with the bridge; the profile is sampled at q, the gaps and
+the contacts at x (second order for the profile away from contacts).
 
 The physics: docs/physics.md#brownian-cluster-dynamics, docs/physics-bcd-contact-layer.md,
 docs/physics-bcd-field-drift.md.
@@ -52,7 +53,6 @@ from .records import COUNTS, RING, STEPPING
 from .sticky import ALL_IN_CONTACT, OK, sticky_step
 
 EULER, LM = 0, 1  # the field's drift schemes, the positions of their names in fricgen.rods.config.DRIFT_SCHEMES
-_MIDPOINT_STREAM = 0x6D6964706F696E74  # the midpoint bridge's key: a sub-stream of the step's BCD key
 CONTACT_TOLERANCE = 1e-12  # relative to sigma: gaps below it are contacts (with the sticky boundary: bonds)
 PASSED = 1  # rods overlapped (the other statuses: fricgen.rods.sticky)
 
@@ -219,25 +219,30 @@ def _step(x, forces, v, length, sigma, mu, dt, clusters, events):
     return OK
 
 
+@numba.njit(inline="always", cache=True)
+def _bin(x, per_wavelength, bins):
+    """The profile bin of position x: its phase in the wavelength, in ``bins`` bins."""
+    phase = x * per_wavelength
+    b = int((phase - math.floor(phase)) * bins)
+    return b if b < bins else 0
+
+
 @numba.njit(cache=True)
-def _sample(x, ring, gap_width, rho_counts, gap_counts):
-    """Add the rods to rho_counts[bin] and their gaps to gap_counts[bin, k] (see advance_rods);
-    returns PASSED if two rods overlap, else OK."""
-    length, sigma, wavelength = ring.length, ring.sigma, ring.wavelength
+def _sample(x, at, ring, gap_width, rho_counts, gap_counts):
+    """Add the rods at ``at`` to rho_counts[bin] and the gaps of x to gap_counts[bin, k] at the left rod's bin
+    (see advance_rods); returns PASSED if two rods of x overlap, else OK."""
+    length, sigma = ring.length, ring.sigma
     n, bins, gap_bins = x.size, rho_counts.size, gap_counts.shape[1]
-    per_wavelength, per_gap, contact = 1.0 / wavelength, 1.0 / gap_width, CONTACT_TOLERANCE * sigma
+    per_wavelength, per_gap, contact = 1.0 / ring.wavelength, 1.0 / gap_width, CONTACT_TOLERANCE * sigma
     status = OK
     for i in range(n):
-        phase = x[i] * per_wavelength
-        b = int((phase - math.floor(phase)) * bins)
-        b = b if b < bins else 0
-        rho_counts[b] += 1.0
+        rho_counts[_bin(at[i], per_wavelength, bins)] += 1.0
         gap = _gap(x, i, length) - sigma
         if gap < -1e-9 * sigma:
             status = PASSED
         k = 0 if gap <= contact else 1 + int(min(gap * per_gap, gap_bins))  # inf: after the last rod of an open line
         if k < gap_bins:
-            gap_counts[b, k] += 1.0
+            gap_counts[_bin(x[i], per_wavelength, bins), k] += 1.0
     return status
 
 
@@ -250,8 +255,8 @@ def advance_rods(positions, ring, stepping, external, pair_force, counts):
     rods per bin of one wavelength; gap_counts[r, b, k] the left rods of pairs in exact contact
     (k = 0; with the bridge layer instead their local time at contact, fricgen.rods.contact.tally_local_time;
     with the sticky boundary the bonded pairs)
-    and with gap r - sigma in [(k - 1) w, k w) (k >= 1), w = gap_width; the forces act and the rods are
-    sampled at the noise's midpoint with stepping.drift == LM. Returns OK or a
+    and with gap r - sigma in [(k - 1) w, k w) (k >= 1), w = gap_width; with stepping.drift == LM the forces act
+    and the profile is sampled at the noise's midpoint (the gaps at the step's end). Returns OK or a
     failure status (PASSED: rods overlapped; ALL_IN_CONTACT: no gap left on the ring; LONG_STEP: a bond's
     detach probability above 1).
     """
@@ -269,16 +274,15 @@ def advance_rods(positions, ring, stepping, external, pair_force, counts):
         heap_t, heap_i = np.empty(3 * n), np.empty(3 * n, dtype=np.int64)  # n, then 2 per merge (< n merges)
         d, drift, bridge = np.empty(n), np.empty(n), bridge_work(n)  # contact.propagate
         sticky = (np.empty(n), np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64), np.empty(n, dtype=np.bool_), np.empty(n + 1))
-        normals, midpoint, half = np.empty(n), np.empty(n), np.empty(n)
+        normals, midpoint = np.empty(n), np.empty(n)
         for s in range(stepping.steps):
             key = fold_key(stream_key(stepping.seed, stepping.first_step + s, BCD), r)
             for i in range(n):
                 normals[i] = ziggurat_normal(key, i)
-            at = x  # where the forces act and the rods are sampled
-            if stepping.drift == LM:  # q = x + delta, the midpoint of the step's noise, by the bridge
+            at = x  # where the forces act and the profile is sampled
+            if stepping.drift == LM:  # q = x + delta, the midpoint of the step's noise; rods may overlap there
                 for i in range(n):
-                    midpoint[i], half[i] = x[i], 0.5 * noise * mu * dt * normals[i]
-                propagate(midpoint, half, length, sigma, 0.25 * variance, fold_key(key, _MIDPOINT_STREAM), BRIDGE, bridge)
+                    midpoint[i] = x[i] + 0.5 * noise * mu * dt * normals[i]
                 at = midpoint
             external(at, ring.field_params, forces)
             for i in range(n):
@@ -306,7 +310,7 @@ def advance_rods(positions, ring, stepping, external, pair_force, counts):
                 if stepping.layer == BRIDGE:  # the contact density from the local time at contact
                     tally_local_time(bridge, count, variance, 2.0 * stepping.gap_width / variance, ring.wavelength, gap_counts[r])
             if status[r] == OK:
-                status[r] = _sample(at, ring, stepping.gap_width, rho_counts[r], gap_counts[r])
+                status[r] = _sample(x, at, ring, stepping.gap_width, rho_counts[r], gap_counts[r])
             if status[r] != OK:
                 break
     return status.max()

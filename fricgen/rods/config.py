@@ -176,7 +176,7 @@ class RodNumerics(Section):
         (O(sqrt(dt)), docs/physics.md#brownian-cluster-dynamics).
     drift_scheme : str
         Where a step evaluates the forces: "euler" (at its start) or "lm" (Leimkuhler-Matthews: at the
-        midpoint of its noise, where the rods are also sampled; bridge layer only;
+        midpoint of its noise, where the profile is also sampled; bridge layer and hard rods only;
         docs/physics-bcd-field-drift.md).
     """
 
@@ -283,9 +283,10 @@ class RodConfig(Section):
             "give bridge",
         )
         self.require(
-            not self.model.sticky_boundary or self.numerics.drift_scheme == "euler",
+            self.model.hard_rods or self.numerics.drift_scheme == "euler",
             "numerics.drift_scheme",
-            "the sticky boundary (eps = 0) runs with the euler drift only",
+            "the lm drift is for hard rods: it evaluates the forces where the rods may overlap (the noise's midpoint), "
+            "and a sticky contact or pair potential is undefined there",
             "give euler",
         )
         m, r = self.model, self.sampling
