@@ -285,8 +285,7 @@ class RodConfig(Section):
         self.require(
             self.model.hard_rods or self.numerics.drift_scheme == "euler",
             "numerics.drift_scheme",
-            "the lm drift is for hard rods: it evaluates the forces where the rods may overlap (the noise's midpoint), "
-            "and a sticky contact or pair potential is undefined there",
+            "the lm drift is for hard rods: a sticky contact or pair potential is undefined where it takes the forces (rods may overlap)",
             "give euler",
         )
         m, r = self.model, self.sampling
