@@ -48,7 +48,7 @@ from numba import types
 
 from ..kernels import FIELD_KERNEL, SCALAR_KERNEL
 from ..rng import BCD, fold_key, stream_key, ziggurat_normal
-from .contact import BRIDGE, MERGE, bridge_work, propagate, tally_local_time
+from .contact import BRIDGE, MERGE, bridge_work, phase_bin, propagate, tally_local_time
 from .records import COUNTS, RING, STEPPING
 from .sticky import ALL_IN_CONTACT, OK, sticky_step
 
@@ -219,14 +219,6 @@ def _step(x, forces, v, length, sigma, mu, dt, clusters, events):
     return OK
 
 
-@numba.njit(inline="always", cache=True)
-def _bin(x, per_wavelength, bins):
-    """The profile bin of position x: its phase in the wavelength, in ``bins`` bins."""
-    phase = x * per_wavelength
-    b = int((phase - math.floor(phase)) * bins)
-    return b if b < bins else 0
-
-
 @numba.njit(cache=True)
 def _sample(x, at, ring, gap_width, rho_counts, gap_counts):
     """Add the rods at ``at`` to rho_counts[bin] and the gaps of x to gap_counts[bin, k] at the left rod's bin
@@ -236,13 +228,13 @@ def _sample(x, at, ring, gap_width, rho_counts, gap_counts):
     per_wavelength, per_gap, contact = 1.0 / ring.wavelength, 1.0 / gap_width, CONTACT_TOLERANCE * sigma
     status = OK
     for i in range(n):
-        rho_counts[_bin(at[i], per_wavelength, bins)] += 1.0
+        rho_counts[phase_bin(at[i] * per_wavelength, bins)] += 1.0
         gap = _gap(x, i, length) - sigma
         if gap < -1e-9 * sigma:
             status = PASSED
         k = 0 if gap <= contact else 1 + int(min(gap * per_gap, gap_bins))  # inf: after the last rod of an open line
         if k < gap_bins:
-            gap_counts[_bin(x[i], per_wavelength, bins), k] += 1.0
+            gap_counts[phase_bin(x[i] * per_wavelength, bins), k] += 1.0
     return status
 
 

@@ -234,6 +234,13 @@ def propagate(x, d, length, sigma, variance, key, layer, work):
     return count
 
 
+@numba.njit(inline="always", cache=True)
+def phase_bin(phase, bins):
+    """The bin of a phase (position over the wavelength, any real) among ``bins`` bins of one wavelength."""
+    b = int((phase - math.floor(phase)) * bins)
+    return b if b < bins else 0
+
+
 @numba.njit(cache=True)
 def tally_local_time(work, count, variance, weight, wavelength, tally):
     """tally[bin of x_i + a / 2, 0] += weight p_i for each pushed pair of the step: the push is the gap's
@@ -248,6 +255,4 @@ def tally_local_time(work, count, variance, weight, wavelength, tally):
         p = push[candidates[k]]
         if p == 0.0:
             continue
-        phase = values[k, 3] / wavelength
-        b = int((phase - math.floor(phase)) * bins)
-        tally[b if b < bins else 0, 0] += weight * p
+        tally[phase_bin(values[k, 3] / wavelength, bins), 0] += weight * p
