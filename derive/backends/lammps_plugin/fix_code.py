@@ -119,46 +119,60 @@ inline double log_proposal(double xi2, Cx g_w, int comps)
   return -0.5 * xi2 - comps * g_w.re;
 }
 
-// The Metropolis-Hastings move of the mode from x (contact_step._propose): y, and in rejection 1 - min(1, alpha).
-inline Cx propose(Cx x, double w, double r, double mu, double kT, double dt, const double *params, uint64_t key, int comps,
-                  int calculus, double &rejection)
-{
-  rejection = 0.0;
-  const ModeStep a = mode_step(x, w, r, mu, kT, dt, params, comps, calculus);
-  if (!(a.s2 > 0.0)) return x;
-  const Cx xi = {ziggurat_normal(key, 0), comps == 2 ? ziggurat_normal(key, 1) : 0.0};
-  const Cx move = a.m + real(std::sqrt(a.s2)) * xi;
-  const Cx g_w = a.g * move;
-  rejection = 1.0;
-  if (std::fabs(g_w.im) >= 3.141592653589793) return x;
-  const Cx y = x + (nonzero(a.g) ? expm1_c(g_w, comps) * inverse(a.g) : move);
-  const ModeStep b = mode_step(y, w, r, mu, kT, dt, params, comps, calculus);
-  const Cx z = b.g * (x - y);
-  if (!(b.s2 > 0.0 && (comps == 2 || 1.0 + z.re > 0.0))) return x;
-  const Cx back = nonzero(b.g) ? log1p_c(z, comps) * inverse(b.g) : x - y;
-  double log_alpha = (x.re * x.re + x.im * x.im - y.re * y.re - y.im * y.im) / (2.0 * mu * kT);
-  const Cx shift = back - b.m;
-  const double xi2_back = (shift.re * shift.re + shift.im * shift.im) / b.s2;
-  log_alpha += log_proposal(xi2_back, b.g * back, comps) - log_proposal(xi.re * xi.re + xi.im * xi.im, g_w, comps);
-  log_alpha += 0.5 * comps * std::log(a.s2 / b.s2);
-  if (log_alpha >= 0.0) {
-    rejection = 0.0;
-    return y;
-  }
-  const double alpha = std::exp(log_alpha);
-  if (!(alpha == alpha)) return x;
-  rejection = 1.0 - alpha;
-  return uniform(key, 2) < alpha ? y : x;
-}
+// A pair's mode as its move reads it: x, the law's w and r, the mode's mobility mu, its components and noise key.
+struct Move {
+  Cx x;
+  double w, r, mu;
+  int comps;
+  uint64_t key;
+};
 
-// The move of a mode from x: the Metropolis-adjusted proposal with the noise, else the friction's decay
-// x e^(-mu (f/u) dt) (contact_step.update_pair and update_rolling).
-inline Cx mode_move(Cx x, double w, double r, double mu, double kT, double dt, const double *params, uint64_t key, int comps,
-                    int calculus, bool noise)
+// Pairs of one colour share no atom: the fix moves up to BATCH of them together, one stage after the other,
+// so that the processor overlaps their independent chains of divisions and library calls (the arithmetic of
+// each pair is unchanged).
+const int BATCH = 8;
+
+// The moves y of count <= BATCH modes from x: the Metropolis-Hastings move with the noise (contact_step._propose,
+// step for step), else the friction's decay x e^(-mu (f/u) dt) (contact_step.update_pair and update_rolling).
+inline void move_batch(const Move *ms, int count, double kT, double dt, const double *params, int calculus, bool noise, Cx *y)
 {
-  if (!noise) return x * real(std::exp(-mu * mode_step(x, w, r, mu, kT, dt, params, comps, calculus).ratio * dt));
-  double rejection;
-  return propose(x, w, r, mu, kT, dt, params, key, comps, calculus, rejection);
+  ModeStep a[BATCH], b[BATCH];
+  Cx xi[BATCH], g_w[BATCH];
+  bool open[BATCH];    // a proposal y awaits its acceptance
+  for (int q = 0; q < count; q++) a[q] = mode_step(ms[q].x, ms[q].w, ms[q].r, ms[q].mu, kT, dt, params, ms[q].comps, calculus);
+  for (int q = 0; q < count; q++) {
+    const Move &m = ms[q];
+    y[q] = m.x;
+    open[q] = false;
+    if (!noise) {
+      y[q] = m.x * real(std::exp(-m.mu * a[q].ratio * dt));
+      continue;
+    }
+    if (!(a[q].s2 > 0.0)) continue;
+    xi[q] = {ziggurat_normal(m.key, 0), m.comps == 2 ? ziggurat_normal(m.key, 1) : 0.0};
+    const Cx move = a[q].m + real(std::sqrt(a[q].s2)) * xi[q];
+    g_w[q] = a[q].g * move;
+    if (std::fabs(g_w[q].im) >= 3.141592653589793) continue;
+    y[q] = m.x + (nonzero(a[q].g) ? expm1_c(g_w[q], m.comps) * inverse(a[q].g) : move);
+    open[q] = true;
+  }
+  for (int q = 0; q < count; q++)
+    if (open[q]) b[q] = mode_step(y[q], ms[q].w, ms[q].r, ms[q].mu, kT, dt, params, ms[q].comps, calculus);
+  for (int q = 0; q < count; q++) {
+    if (!open[q]) continue;
+    const Cx x = ms[q].x, yq = y[q];
+    const int comps = ms[q].comps;
+    y[q] = x;    // until accepted
+    const Cx z = b[q].g * (x - yq);
+    if (!(b[q].s2 > 0.0 && (comps == 2 || 1.0 + z.re > 0.0))) continue;
+    const Cx back = nonzero(b[q].g) ? log1p_c(z, comps) * inverse(b[q].g) : x - yq;
+    double log_alpha = (x.re * x.re + x.im * x.im - yq.re * yq.re - yq.im * yq.im) / (2.0 * ms[q].mu * kT);
+    const Cx shift = back - b[q].m;
+    const double xi2_back = (shift.re * shift.re + shift.im * shift.im) / b[q].s2;
+    log_alpha += log_proposal(xi2_back, b[q].g * back, comps) - log_proposal(xi[q].re * xi[q].re + xi[q].im * xi[q].im, g_w[q], comps);
+    log_alpha += 0.5 * comps * std::log(a[q].s2 / b[q].s2);
+    if (log_alpha >= 0.0 || uniform(ms[q].key, 2) < std::exp(log_alpha)) y[q] = yq;
+  }
 }
 
 // Orthonormal tangents e1, e2 of the contact plane (contact_step._tangents); in 2-D e1 = z x n, e2 = 0.
@@ -239,7 +253,7 @@ class ${fix_cls} : public Fix {
   void solvent_step();
   void collect_candidates();
   template <typename Key> void sort_by(size_t, size_t, int, Key);
-  void step_pair(const Pair &, uint64_t);
+  void step_batch(const Pair *, int, uint64_t);
 };
 
 }    // namespace LAMMPS_NS

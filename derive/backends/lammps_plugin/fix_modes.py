@@ -1,9 +1,10 @@
-"""The step of one pair of the fix ``fricgen/exact/<law>`` by the mode its law acts on, as C++ templates for
-fix_code: sliding (fricgen/langevin/contact_step.py update_pair: velocities and spins), rolling and spinning
+"""The step of a batch of pairs (one colour: no shared atom) of the fix ``fricgen/exact/<law>`` by the mode its law
+acts on, as C++ templates for fix_code: sliding (fricgen/langevin/contact_step.py update_pair: velocities and spins), rolling and spinning
 (update_rolling with rolling_mode's mode vector: spins only), each mode's noise stream, and the refusal
 of 2-D by a spinning law's fix."""
 
 from string import Template
+from textwrap import indent
 
 #: What both pair steps start from: the pair's distance r, normal n (from lo to hi, on their neighbour-list copies),
 #: radii, the law's weight w and the inverse moments of inertia, on the canonical copies i and k.
@@ -20,76 +21,112 @@ PAIR_GEOMETRY = """\
 """
 
 SLIDING_PAIR = (
-    r"""// The engine's pairwise step of one pair (contact_step.update_pair) on the canonical copies i and c.
-void ${fix_cls}::step_pair(const Pair &p, uint64_t key)
+    r"""// The engine's pairwise step (contact_step.update_pair) of count <= BATCH pairs of one colour (no shared atom)
+// on their canonical copies i and c: each pair's mode, their moves together (move_batch), each pair's impulse.
+void ${fix_cls}::step_batch(const Pair *ps, int count, uint64_t key)
 {
-"""
-    + PAIR_GEOMETRY
-    + r"""  double **v = atom->v;
+  struct Contact {
+    int i, k;
+    double n[3], e1[3], e2[3], arms[2], inv_m[2], inv_i[2];
+  };
+  Contact cs[BATCH];
+  Move ms[BATCH];
+  Cx ys[BATCH];
+  double **v = atom->v;
   const bool three = domain->dimension == 3;
-  const double inv_mi = 1.0 / rmass[i], inv_mk = 1.0 / rmass[k];
-  const double mu = inv_mi + inv_mk + ri * ri * inv_ii + rk * rk * inv_ik;
-  // u_perp = P (v_k - v_i) - (R_i w_i + R_k w_k) x n (F-4) as x = u_perp . (e1 + i e2): contact_step.contact_mode
-  const double wx = ri * omega[i][0] + rk * omega[k][0], wy = ri * omega[i][1] + rk * omega[k][1];
-  const double wz = ri * omega[i][2] + rk * omega[k][2];
-  const double cx = wy * n[2] - wz * n[1], cy = wz * n[0] - wx * n[2], cz = wx * n[1] - wy * n[0];
-  const double ux = v[k][0] - v[i][0] - cx, uy = v[k][1] - v[i][1] - cy, uz = v[k][2] - v[i][2] - cz;
-  double e1[3], e2[3];
-  tangents(n, three, e1, e2);
-  const Cx xm = {ux * e1[0] + uy * e1[1] + uz * e1[2], ux * e2[0] + uy * e2[1] + uz * e2[2]};
   const int comps = three ? 2 : 1;
-  const uint64_t pair = pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1);
-  const Cx y = mode_move(xm, w, r, mu, kT, update->dt, params, pair, comps, calculus, noise_on);
-  if (same(y, xm)) return;
-  const double jp = (xm.re - y.re) / mu, jq = (xm.im - y.im) / mu;    // impulse on i: u_perp -> u_perp - mu J
-  const double jx = jp * e1[0] + jq * e2[0], jy = jp * e1[1] + jq * e2[1], jz = jp * e1[2] + jq * e2[2];
-  const double tx = n[1] * jz - n[2] * jy, ty = n[2] * jx - n[0] * jz, tz = n[0] * jy - n[1] * jx;
-  const int particles[2] = {i, k};
-  const double signs[2] = {1.0, -1.0}, arms[2] = {ri, rk}, inv_m[2] = {inv_mi, inv_mk}, inv_i[2] = {inv_ii, inv_ik};
-  for (int s = 0; s < 2; s++) {
-    const int a = particles[s];
-    const double scale = signs[s] * inv_m[s], turn = arms[s] * inv_i[s];
-    v[a][0] += scale * jx;
-    v[a][1] += scale * jy;
-    v[a][2] += scale * jz;
-    omega[a][0] += turn * tx;
-    omega[a][1] += turn * ty;
-    omega[a][2] += turn * tz;
+  for (int q = 0; q < count; q++) {
+    const Pair &p = ps[q];
+"""
+    + indent(PAIR_GEOMETRY, "  ")
+    + r"""    const double inv_mi = 1.0 / rmass[i], inv_mk = 1.0 / rmass[k];
+    const double mu = inv_mi + inv_mk + ri * ri * inv_ii + rk * rk * inv_ik;
+    // u_perp = P (v_k - v_i) - (R_i w_i + R_k w_k) x n (F-4) as x = u_perp . (e1 + i e2): contact_step.contact_mode
+    const double wx = ri * omega[i][0] + rk * omega[k][0], wy = ri * omega[i][1] + rk * omega[k][1];
+    const double wz = ri * omega[i][2] + rk * omega[k][2];
+    const double cx = wy * n[2] - wz * n[1], cy = wz * n[0] - wx * n[2], cz = wx * n[1] - wy * n[0];
+    const double ux = v[k][0] - v[i][0] - cx, uy = v[k][1] - v[i][1] - cy, uz = v[k][2] - v[i][2] - cz;
+    Contact &c = cs[q];
+    c = {i, k, {n[0], n[1], n[2]}, {}, {}, {ri, rk}, {inv_mi, inv_mk}, {inv_ii, inv_ik}};
+    tangents(n, three, c.e1, c.e2);
+    const double *e1 = c.e1, *e2 = c.e2;
+    const Cx xm = {ux * e1[0] + uy * e1[1] + uz * e1[2], ux * e2[0] + uy * e2[1] + uz * e2[2]};
+    ms[q] = {xm, w, r, mu, comps, pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1)};
   }
-  if (k >= atom->nlocal) touched[k] = 1;
+  move_batch(ms, count, kT, update->dt, params, calculus, noise_on, ys);
+  double **omega = atom->omega;
+  for (int q = 0; q < count; q++) {
+    const Cx xm = ms[q].x, y = ys[q];
+    if (same(y, xm)) continue;
+    const Contact &c = cs[q];
+    const double *n = c.n, *e1 = c.e1, *e2 = c.e2, mu = ms[q].mu;
+    const double jp = (xm.re - y.re) / mu, jq = (xm.im - y.im) / mu;    // impulse on i: u_perp -> u_perp - mu J
+    const double jx = jp * e1[0] + jq * e2[0], jy = jp * e1[1] + jq * e2[1], jz = jp * e1[2] + jq * e2[2];
+    const double tx = n[1] * jz - n[2] * jy, ty = n[2] * jx - n[0] * jz, tz = n[0] * jy - n[1] * jx;
+    const int particles[2] = {c.i, c.k};
+    const double signs[2] = {1.0, -1.0};
+    for (int s = 0; s < 2; s++) {
+      const int a = particles[s];
+      const double scale = signs[s] * c.inv_m[s], turn = c.arms[s] * c.inv_i[s];
+      v[a][0] += scale * jx;
+      v[a][1] += scale * jy;
+      v[a][2] += scale * jz;
+      omega[a][0] += turn * tx;
+      omega[a][1] += turn * ty;
+      omega[a][2] += turn * tz;
+    }
+    if (c.k >= atom->nlocal) touched[c.k] = 1;
+  }
 }
 
 """
 )
 
-#: The step of one pair by the law's mode: sliding (contact_step.update_pair), rolling and spinning
+#: The step of a batch of pairs by the law's mode: sliding (contact_step.update_pair), rolling and spinning
 #: (contact_step.update_rolling, with rolling_mode's mode vector).
 PAIR_STEP = {"sliding": SLIDING_PAIR}
 
 MODE_PAIR = Template(
-    r"""// The engine's step of one pair's ${mode} mode (contact_step.update_rolling) on the canonical copies i and c:
-// x = ${mode_vector}, mu_m = R_eff^2 (1/I_i + 1/I_k), J = (y - x) / mu_m; only the spins change.
-void $${fix_cls}::step_pair(const Pair &p, uint64_t key)
+    r"""// The engine's step of the ${mode} mode (contact_step.update_rolling) of count <= BATCH pairs of one colour (no
+// shared atom) on their canonical copies i and c: x = ${mode_vector}, mu_m = R_eff^2 (1/I_i + 1/I_k),
+// J = (y - x) / mu_m; only the spins change.
+void $${fix_cls}::step_batch(const Pair *ps, int count, uint64_t key)
 {
+  struct Contact {
+    int i, k;
+    double n[3], e1[3], e2[3], turns[2];
+  };
+  Contact cs[BATCH];
+  Move ms[BATCH];
+  Cx ys[BATCH];
+  for (int q = 0; q < count; q++) {
+    const Pair &p = ps[q];
 """
-    + PAIR_GEOMETRY.replace("$", "$$")
-    + r"""  const double reff = ri * rk / sigma;
-  const double mu = reff * reff * (inv_ii + inv_ik);
-  const double ox = omega[i][0] - omega[k][0], oy = omega[i][1] - omega[k][1], oz = omega[i][2] - omega[k][2];
-${mode_vector_code}  const uint64_t pair = pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1);
-  const Cx y = mode_move(xm, w, r, mu, kT, update->dt, params, pair, comps, calculus, noise_on);
-  if (same(y, xm)) return;
-  const double jp = (y.re - xm.re) / mu, jq = (y.im - xm.im) / mu;
-  double jx = jp * e1[0] + jq * e2[0], jy = jp * e1[1] + jq * e2[1], jz = jp * e1[2] + jq * e2[2];
-${impulse_code}  const int particles[2] = {i, k};
-  const double turns[2] = {reff * inv_ii, -reff * inv_ik};
-  for (int s = 0; s < 2; s++) {
-    const int a = particles[s];
-    omega[a][0] += turns[s] * jx;
-    omega[a][1] += turns[s] * jy;
-    omega[a][2] += turns[s] * jz;
+    + indent(PAIR_GEOMETRY, "  ").replace("$", "$$")
+    + r"""    const double reff = ri * rk / sigma;
+    const double mu = reff * reff * (inv_ii + inv_ik);
+    const double ox = omega[i][0] - omega[k][0], oy = omega[i][1] - omega[k][1], oz = omega[i][2] - omega[k][2];
+${mode_vector_code}    cs[q] = {i, k, {n[0], n[1], n[2]}, {e1[0], e1[1], e1[2]}, {e2[0], e2[1], e2[2]}, {reff * inv_ii, -reff * inv_ik}};
+    ms[q] = {xm, w, r, mu, comps, pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1)};
   }
-  if (k >= atom->nlocal) touched[k] = 1;
+  move_batch(ms, count, kT, update->dt, params, calculus, noise_on, ys);
+  double **omega = atom->omega;
+  for (int q = 0; q < count; q++) {
+    const Cx xm = ms[q].x, y = ys[q];
+    if (same(y, xm)) continue;
+    const Contact &c = cs[q];
+    const double *n = c.n, *e1 = c.e1, *e2 = c.e2, mu = ms[q].mu;
+    const double jp = (y.re - xm.re) / mu, jq = (y.im - xm.im) / mu;
+    double jx = jp * e1[0] + jq * e2[0], jy = jp * e1[1] + jq * e2[1], jz = jp * e1[2] + jq * e2[2];
+${impulse_code}    const int particles[2] = {c.i, c.k};
+    for (int s = 0; s < 2; s++) {
+      const int a = particles[s];
+      omega[a][0] += c.turns[s] * jx;
+      omega[a][1] += c.turns[s] * jy;
+      omega[a][2] += c.turns[s] * jz;
+    }
+    if (c.k >= atom->nlocal) touched[c.k] = 1;
+  }
 }
 """
 )
@@ -123,11 +160,11 @@ ROLLING_IMPULSE = """\
 PAIR_STEP["rolling"] = MODE_PAIR.substitute(
     mode="rolling",
     mode_vector="v_roll . (e1 + i e2) (3-D) or R_eff (w_iz - w_kz) (2-D)",
-    mode_vector_code=ROLLING_VECTOR,
-    impulse_code=ROLLING_IMPULSE,
+    mode_vector_code=indent(ROLLING_VECTOR, "  "),
+    impulse_code=indent(ROLLING_IMPULSE, "  "),
 )
 PAIR_STEP["spinning"] = MODE_PAIR.substitute(
-    mode="spinning", mode_vector="v_spin = R_eff (w_i - w_k) . n", mode_vector_code=SPINNING_VECTOR, impulse_code=""
+    mode="spinning", mode_vector="v_spin = R_eff (w_i - w_k) . n", mode_vector_code=indent(SPINNING_VECTOR, "  "), impulse_code=""
 )
 
 #: The noise stream of each mode's key (fricgen.rng: CONTACT for sliding, ROLLING, SPINNING; support and mode_code

@@ -297,15 +297,19 @@ void ${fix_cls}::end_of_step()
       phases *= 2;
     }
   // the pairs in contact in ID order, each in the phase of the halves that hold its owned atom
-  pairs.clear();
-  int most = 0;
+  // (each candidate is written and the count moves on for a contact: no branch to mispredict)
+  pairs.resize(candidates.size());
+  size_t kept = 0;
   for (const Pair &candidate : candidates) {
     const int i = candidate.xi, j = candidate.xj;
     const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
     const double range = WCA_RANGE * (radius[i] + radius[j]);
-    if (dx * dx + dy * dy + dz * dz >= range * range) continue;
-    pairs.push_back(candidate);
-    Pair &p = pairs.back();
+    pairs[kept] = candidate;
+    kept += dx * dx + dy * dy + dz * dz < range * range;
+  }
+  pairs.resize(kept);
+  int most = 0;
+  for (Pair &p : pairs) {
     for (int d = 0; d < 3; d++)
       if (split[d] && x[p.i][d] >= 0.5 * (domain->sublo[d] + domain->subhi[d])) p.phase += split[d];
     most = std::max(most, std::max(++degree[p.i], ++degree[p.c]));
@@ -337,10 +341,15 @@ void ${fix_cls}::end_of_step()
     sort_by(first, last, 64 * words, [](const Pair &p) { return p.colour; });
     first = last;
   }
-  // the phases one after another; the pairs of a phase in colour order
+  // the phases one after another; the pairs of a phase in colour order, up to BATCH of one colour at a time
   size_t q = 0;
   for (int phase = 0; phase < phases; phase++) {
-    for (; q < pairs.size() && pairs[q].phase == phase; q++) step_pair(pairs[q], key);
+    while (q < pairs.size() && pairs[q].phase == phase) {
+      size_t end = q + 1;
+      while (end < pairs.size() && end - q < BATCH && pairs[end].phase == phase && pairs[end].colour == pairs[q].colour) end++;
+      step_batch(&pairs[q], static_cast<int>(end - q), key);
+      q = end;
+    }
     if (phases == 1) break;
     comm->reverse_comm(this);    // touched ghost copies to their owners
     std::fill(touched.begin(), touched.end(), 0);

@@ -378,46 +378,60 @@ inline double log_proposal(double xi2, Cx g_w, int comps)
   return -0.5 * xi2 - comps * g_w.re;
 }
 
-// The Metropolis-Hastings move of the mode from x (contact_step._propose): y, and in rejection 1 - min(1, alpha).
-inline Cx propose(Cx x, double w, double r, double mu, double kT, double dt, const double *params, uint64_t key, int comps,
-                  int calculus, double &rejection)
-{
-  rejection = 0.0;
-  const ModeStep a = mode_step(x, w, r, mu, kT, dt, params, comps, calculus);
-  if (!(a.s2 > 0.0)) return x;
-  const Cx xi = {ziggurat_normal(key, 0), comps == 2 ? ziggurat_normal(key, 1) : 0.0};
-  const Cx move = a.m + real(std::sqrt(a.s2)) * xi;
-  const Cx g_w = a.g * move;
-  rejection = 1.0;
-  if (std::fabs(g_w.im) >= 3.141592653589793) return x;
-  const Cx y = x + (nonzero(a.g) ? expm1_c(g_w, comps) * inverse(a.g) : move);
-  const ModeStep b = mode_step(y, w, r, mu, kT, dt, params, comps, calculus);
-  const Cx z = b.g * (x - y);
-  if (!(b.s2 > 0.0 && (comps == 2 || 1.0 + z.re > 0.0))) return x;
-  const Cx back = nonzero(b.g) ? log1p_c(z, comps) * inverse(b.g) : x - y;
-  double log_alpha = (x.re * x.re + x.im * x.im - y.re * y.re - y.im * y.im) / (2.0 * mu * kT);
-  const Cx shift = back - b.m;
-  const double xi2_back = (shift.re * shift.re + shift.im * shift.im) / b.s2;
-  log_alpha += log_proposal(xi2_back, b.g * back, comps) - log_proposal(xi.re * xi.re + xi.im * xi.im, g_w, comps);
-  log_alpha += 0.5 * comps * std::log(a.s2 / b.s2);
-  if (log_alpha >= 0.0) {
-    rejection = 0.0;
-    return y;
-  }
-  const double alpha = std::exp(log_alpha);
-  if (!(alpha == alpha)) return x;
-  rejection = 1.0 - alpha;
-  return uniform(key, 2) < alpha ? y : x;
-}
+// A pair's mode as its move reads it: x, the law's w and r, the mode's mobility mu, its components and noise key.
+struct Move {
+  Cx x;
+  double w, r, mu;
+  int comps;
+  uint64_t key;
+};
 
-// The move of a mode from x: the Metropolis-adjusted proposal with the noise, else the friction's decay
-// x e^(-mu (f/u) dt) (contact_step.update_pair and update_rolling).
-inline Cx mode_move(Cx x, double w, double r, double mu, double kT, double dt, const double *params, uint64_t key, int comps,
-                    int calculus, bool noise)
+// Pairs of one colour share no atom: the fix moves up to BATCH of them together, one stage after the other,
+// so that the processor overlaps their independent chains of divisions and library calls (the arithmetic of
+// each pair is unchanged).
+const int BATCH = 8;
+
+// The moves y of count <= BATCH modes from x: the Metropolis-Hastings move with the noise (contact_step._propose,
+// step for step), else the friction's decay x e^(-mu (f/u) dt) (contact_step.update_pair and update_rolling).
+inline void move_batch(const Move *ms, int count, double kT, double dt, const double *params, int calculus, bool noise, Cx *y)
 {
-  if (!noise) return x * real(std::exp(-mu * mode_step(x, w, r, mu, kT, dt, params, comps, calculus).ratio * dt));
-  double rejection;
-  return propose(x, w, r, mu, kT, dt, params, key, comps, calculus, rejection);
+  ModeStep a[BATCH], b[BATCH];
+  Cx xi[BATCH], g_w[BATCH];
+  bool open[BATCH];    // a proposal y awaits its acceptance
+  for (int q = 0; q < count; q++) a[q] = mode_step(ms[q].x, ms[q].w, ms[q].r, ms[q].mu, kT, dt, params, ms[q].comps, calculus);
+  for (int q = 0; q < count; q++) {
+    const Move &m = ms[q];
+    y[q] = m.x;
+    open[q] = false;
+    if (!noise) {
+      y[q] = m.x * real(std::exp(-m.mu * a[q].ratio * dt));
+      continue;
+    }
+    if (!(a[q].s2 > 0.0)) continue;
+    xi[q] = {ziggurat_normal(m.key, 0), m.comps == 2 ? ziggurat_normal(m.key, 1) : 0.0};
+    const Cx move = a[q].m + real(std::sqrt(a[q].s2)) * xi[q];
+    g_w[q] = a[q].g * move;
+    if (std::fabs(g_w[q].im) >= 3.141592653589793) continue;
+    y[q] = m.x + (nonzero(a[q].g) ? expm1_c(g_w[q], m.comps) * inverse(a[q].g) : move);
+    open[q] = true;
+  }
+  for (int q = 0; q < count; q++)
+    if (open[q]) b[q] = mode_step(y[q], ms[q].w, ms[q].r, ms[q].mu, kT, dt, params, ms[q].comps, calculus);
+  for (int q = 0; q < count; q++) {
+    if (!open[q]) continue;
+    const Cx x = ms[q].x, yq = y[q];
+    const int comps = ms[q].comps;
+    y[q] = x;    // until accepted
+    const Cx z = b[q].g * (x - yq);
+    if (!(b[q].s2 > 0.0 && (comps == 2 || 1.0 + z.re > 0.0))) continue;
+    const Cx back = nonzero(b[q].g) ? log1p_c(z, comps) * inverse(b[q].g) : x - yq;
+    double log_alpha = (x.re * x.re + x.im * x.im - yq.re * yq.re - yq.im * yq.im) / (2.0 * ms[q].mu * kT);
+    const Cx shift = back - b[q].m;
+    const double xi2_back = (shift.re * shift.re + shift.im * shift.im) / b[q].s2;
+    log_alpha += log_proposal(xi2_back, b[q].g * back, comps) - log_proposal(xi[q].re * xi[q].re + xi[q].im * xi[q].im, g_w[q], comps);
+    log_alpha += 0.5 * comps * std::log(a[q].s2 / b[q].s2);
+    if (log_alpha >= 0.0 || uniform(ms[q].key, 2) < std::exp(log_alpha)) y[q] = yq;
+  }
 }
 
 // Orthonormal tangents e1, e2 of the contact plane (contact_step._tangents); in 2-D e1 = z x n, e2 = 0.
@@ -570,51 +584,68 @@ void FixFricgenRollingCoulombNewton::check_domain()
   }
 }
 
-// The engine's step of one pair's rolling mode (contact_step.update_rolling) on the canonical copies i and c:
-// x = v_roll . (e1 + i e2) (3-D) or R_eff (w_iz - w_kz) (2-D), mu_m = R_eff^2 (1/I_i + 1/I_k), J = (y - x) / mu_m; only the spins change.
-void FixFricgenRollingCoulombNewton::step_pair(const Pair &p, uint64_t key)
+// The engine's step of the rolling mode (contact_step.update_rolling) of count <= BATCH pairs of one colour (no
+// shared atom) on their canonical copies i and c: x = v_roll . (e1 + i e2) (3-D) or R_eff (w_iz - w_kz) (2-D), mu_m = R_eff^2 (1/I_i + 1/I_k),
+// J = (y - x) / mu_m; only the spins change.
+void FixFricgenRollingCoulombNewton::step_batch(const Pair *ps, int count, uint64_t key)
 {
-  double **x = atom->x, **omega = atom->omega;
-  const double *radius = atom->radius, *rmass = atom->rmass;
-  const int i = p.i, k = p.c;
-  const double dx = x[p.xj][0] - x[p.xi][0], dy = x[p.xj][1] - x[p.xi][1], dz = x[p.xj][2] - x[p.xi][2];
-  const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-  const double n[3] = {dx / r, dy / r, dz / r};
-  const double ri = radius[i], rk = radius[k], sigma = ri + rk;
-  const double w = weight(r / sigma, params) / sigma;
-  const double inv_ii = 1.0 / (inertia * rmass[i] * (ri * ri)), inv_ik = 1.0 / (inertia * rmass[k] * (rk * rk));
-  const double reff = ri * rk / sigma;
-  const double mu = reff * reff * (inv_ii + inv_ik);
-  const double ox = omega[i][0] - omega[k][0], oy = omega[i][1] - omega[k][1], oz = omega[i][2] - omega[k][2];
-  double e1[3] = {0.0, 0.0, 1.0}, e2[3] = {0.0, 0.0, 0.0};
-  int comps = 1;
-  Cx xm = {reff * oz, 0.0};    // 2-D: R_eff (w_iz - w_kz) along z
-  if (domain->dimension == 3) {    // v_roll = R_eff (w_i - w_k) x n
-    const double cx = oy * n[2] - oz * n[1], cy = oz * n[0] - ox * n[2], cz = ox * n[1] - oy * n[0];
-    tangents(n, true, e1, e2);
-    xm = {reff * (cx * e1[0] + cy * e1[1] + cz * e1[2]), reff * (cx * e2[0] + cy * e2[1] + cz * e2[2])};
-    comps = 2;
+  struct Contact {
+    int i, k;
+    double n[3], e1[3], e2[3], turns[2];
+  };
+  Contact cs[BATCH];
+  Move ms[BATCH];
+  Cx ys[BATCH];
+  for (int q = 0; q < count; q++) {
+    const Pair &p = ps[q];
+    double **x = atom->x, **omega = atom->omega;
+    const double *radius = atom->radius, *rmass = atom->rmass;
+    const int i = p.i, k = p.c;
+    const double dx = x[p.xj][0] - x[p.xi][0], dy = x[p.xj][1] - x[p.xi][1], dz = x[p.xj][2] - x[p.xi][2];
+    const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double n[3] = {dx / r, dy / r, dz / r};
+    const double ri = radius[i], rk = radius[k], sigma = ri + rk;
+    const double w = weight(r / sigma, params) / sigma;
+    const double inv_ii = 1.0 / (inertia * rmass[i] * (ri * ri)), inv_ik = 1.0 / (inertia * rmass[k] * (rk * rk));
+    const double reff = ri * rk / sigma;
+    const double mu = reff * reff * (inv_ii + inv_ik);
+    const double ox = omega[i][0] - omega[k][0], oy = omega[i][1] - omega[k][1], oz = omega[i][2] - omega[k][2];
+    double e1[3] = {0.0, 0.0, 1.0}, e2[3] = {0.0, 0.0, 0.0};
+    int comps = 1;
+    Cx xm = {reff * oz, 0.0};    // 2-D: R_eff (w_iz - w_kz) along z
+    if (domain->dimension == 3) {    // v_roll = R_eff (w_i - w_k) x n
+      const double cx = oy * n[2] - oz * n[1], cy = oz * n[0] - ox * n[2], cz = ox * n[1] - oy * n[0];
+      tangents(n, true, e1, e2);
+      xm = {reff * (cx * e1[0] + cy * e1[1] + cz * e1[2]), reff * (cx * e2[0] + cy * e2[1] + cz * e2[2])};
+      comps = 2;
+    }
+    cs[q] = {i, k, {n[0], n[1], n[2]}, {e1[0], e1[1], e1[2]}, {e2[0], e2[1], e2[2]}, {reff * inv_ii, -reff * inv_ik}};
+    ms[q] = {xm, w, r, mu, comps, pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1)};
   }
-  const uint64_t pair = pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1);
-  const Cx y = mode_move(xm, w, r, mu, kT, update->dt, params, pair, comps, calculus, noise_on);
-  if (same(y, xm)) return;
-  const double jp = (y.re - xm.re) / mu, jq = (y.im - xm.im) / mu;
-  double jx = jp * e1[0] + jq * e2[0], jy = jp * e1[1] + jq * e2[1], jz = jp * e1[2] + jq * e2[2];
-  if (domain->dimension == 3) {
-    const double ax = jx, ay = jy, az = jz;
-    jx = n[1] * az - n[2] * ay;
-    jy = n[2] * ax - n[0] * az;
-    jz = n[0] * ay - n[1] * ax;
+  move_batch(ms, count, kT, update->dt, params, calculus, noise_on, ys);
+  double **omega = atom->omega;
+  for (int q = 0; q < count; q++) {
+    const Cx xm = ms[q].x, y = ys[q];
+    if (same(y, xm)) continue;
+    const Contact &c = cs[q];
+    const double *n = c.n, *e1 = c.e1, *e2 = c.e2, mu = ms[q].mu;
+    const double jp = (y.re - xm.re) / mu, jq = (y.im - xm.im) / mu;
+    double jx = jp * e1[0] + jq * e2[0], jy = jp * e1[1] + jq * e2[1], jz = jp * e1[2] + jq * e2[2];
+    if (domain->dimension == 3) {
+      const double ax = jx, ay = jy, az = jz;
+      jx = n[1] * az - n[2] * ay;
+      jy = n[2] * ax - n[0] * az;
+      jz = n[0] * ay - n[1] * ax;
+    }
+    const int particles[2] = {c.i, c.k};
+    for (int s = 0; s < 2; s++) {
+      const int a = particles[s];
+      omega[a][0] += c.turns[s] * jx;
+      omega[a][1] += c.turns[s] * jy;
+      omega[a][2] += c.turns[s] * jz;
+    }
+    if (c.k >= atom->nlocal) touched[c.k] = 1;
   }
-  const int particles[2] = {i, k};
-  const double turns[2] = {reff * inv_ii, -reff * inv_ik};
-  for (int s = 0; s < 2; s++) {
-    const int a = particles[s];
-    omega[a][0] += turns[s] * jx;
-    omega[a][1] += turns[s] * jy;
-    omega[a][2] += turns[s] * jz;
-  }
-  if (k >= atom->nlocal) touched[k] = 1;
 }
 
 // On each neighbour-list build (atoms are renumbered only then): every listed pair once, as (lower ID, higher ID),
@@ -736,15 +767,19 @@ void FixFricgenRollingCoulombNewton::end_of_step()
       phases *= 2;
     }
   // the pairs in contact in ID order, each in the phase of the halves that hold its owned atom
-  pairs.clear();
-  int most = 0;
+  // (each candidate is written and the count moves on for a contact: no branch to mispredict)
+  pairs.resize(candidates.size());
+  size_t kept = 0;
   for (const Pair &candidate : candidates) {
     const int i = candidate.xi, j = candidate.xj;
     const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
     const double range = WCA_RANGE * (radius[i] + radius[j]);
-    if (dx * dx + dy * dy + dz * dz >= range * range) continue;
-    pairs.push_back(candidate);
-    Pair &p = pairs.back();
+    pairs[kept] = candidate;
+    kept += dx * dx + dy * dy + dz * dz < range * range;
+  }
+  pairs.resize(kept);
+  int most = 0;
+  for (Pair &p : pairs) {
     for (int d = 0; d < 3; d++)
       if (split[d] && x[p.i][d] >= 0.5 * (domain->sublo[d] + domain->subhi[d])) p.phase += split[d];
     most = std::max(most, std::max(++degree[p.i], ++degree[p.c]));
@@ -776,10 +811,15 @@ void FixFricgenRollingCoulombNewton::end_of_step()
     sort_by(first, last, 64 * words, [](const Pair &p) { return p.colour; });
     first = last;
   }
-  // the phases one after another; the pairs of a phase in colour order
+  // the phases one after another; the pairs of a phase in colour order, up to BATCH of one colour at a time
   size_t q = 0;
   for (int phase = 0; phase < phases; phase++) {
-    for (; q < pairs.size() && pairs[q].phase == phase; q++) step_pair(pairs[q], key);
+    while (q < pairs.size() && pairs[q].phase == phase) {
+      size_t end = q + 1;
+      while (end < pairs.size() && end - q < BATCH && pairs[end].phase == phase && pairs[end].colour == pairs[q].colour) end++;
+      step_batch(&pairs[q], static_cast<int>(end - q), key);
+      q = end;
+    }
     if (phases == 1) break;
     comm->reverse_comm(this);    // touched ghost copies to their owners
     std::fill(touched.begin(), touched.end(), 0);

@@ -351,46 +351,60 @@ inline double log_proposal(double xi2, Cx g_w, int comps)
   return -0.5 * xi2 - comps * g_w.re;
 }
 
-// The Metropolis-Hastings move of the mode from x (contact_step._propose): y, and in rejection 1 - min(1, alpha).
-inline Cx propose(Cx x, double w, double r, double mu, double kT, double dt, const double *params, uint64_t key, int comps,
-                  int calculus, double &rejection)
-{
-  rejection = 0.0;
-  const ModeStep a = mode_step(x, w, r, mu, kT, dt, params, comps, calculus);
-  if (!(a.s2 > 0.0)) return x;
-  const Cx xi = {ziggurat_normal(key, 0), comps == 2 ? ziggurat_normal(key, 1) : 0.0};
-  const Cx move = a.m + real(std::sqrt(a.s2)) * xi;
-  const Cx g_w = a.g * move;
-  rejection = 1.0;
-  if (std::fabs(g_w.im) >= 3.141592653589793) return x;
-  const Cx y = x + (nonzero(a.g) ? expm1_c(g_w, comps) * inverse(a.g) : move);
-  const ModeStep b = mode_step(y, w, r, mu, kT, dt, params, comps, calculus);
-  const Cx z = b.g * (x - y);
-  if (!(b.s2 > 0.0 && (comps == 2 || 1.0 + z.re > 0.0))) return x;
-  const Cx back = nonzero(b.g) ? log1p_c(z, comps) * inverse(b.g) : x - y;
-  double log_alpha = (x.re * x.re + x.im * x.im - y.re * y.re - y.im * y.im) / (2.0 * mu * kT);
-  const Cx shift = back - b.m;
-  const double xi2_back = (shift.re * shift.re + shift.im * shift.im) / b.s2;
-  log_alpha += log_proposal(xi2_back, b.g * back, comps) - log_proposal(xi.re * xi.re + xi.im * xi.im, g_w, comps);
-  log_alpha += 0.5 * comps * std::log(a.s2 / b.s2);
-  if (log_alpha >= 0.0) {
-    rejection = 0.0;
-    return y;
-  }
-  const double alpha = std::exp(log_alpha);
-  if (!(alpha == alpha)) return x;
-  rejection = 1.0 - alpha;
-  return uniform(key, 2) < alpha ? y : x;
-}
+// A pair's mode as its move reads it: x, the law's w and r, the mode's mobility mu, its components and noise key.
+struct Move {
+  Cx x;
+  double w, r, mu;
+  int comps;
+  uint64_t key;
+};
 
-// The move of a mode from x: the Metropolis-adjusted proposal with the noise, else the friction's decay
-// x e^(-mu (f/u) dt) (contact_step.update_pair and update_rolling).
-inline Cx mode_move(Cx x, double w, double r, double mu, double kT, double dt, const double *params, uint64_t key, int comps,
-                    int calculus, bool noise)
+// Pairs of one colour share no atom: the fix moves up to BATCH of them together, one stage after the other,
+// so that the processor overlaps their independent chains of divisions and library calls (the arithmetic of
+// each pair is unchanged).
+const int BATCH = 8;
+
+// The moves y of count <= BATCH modes from x: the Metropolis-Hastings move with the noise (contact_step._propose,
+// step for step), else the friction's decay x e^(-mu (f/u) dt) (contact_step.update_pair and update_rolling).
+inline void move_batch(const Move *ms, int count, double kT, double dt, const double *params, int calculus, bool noise, Cx *y)
 {
-  if (!noise) return x * real(std::exp(-mu * mode_step(x, w, r, mu, kT, dt, params, comps, calculus).ratio * dt));
-  double rejection;
-  return propose(x, w, r, mu, kT, dt, params, key, comps, calculus, rejection);
+  ModeStep a[BATCH], b[BATCH];
+  Cx xi[BATCH], g_w[BATCH];
+  bool open[BATCH];    // a proposal y awaits its acceptance
+  for (int q = 0; q < count; q++) a[q] = mode_step(ms[q].x, ms[q].w, ms[q].r, ms[q].mu, kT, dt, params, ms[q].comps, calculus);
+  for (int q = 0; q < count; q++) {
+    const Move &m = ms[q];
+    y[q] = m.x;
+    open[q] = false;
+    if (!noise) {
+      y[q] = m.x * real(std::exp(-m.mu * a[q].ratio * dt));
+      continue;
+    }
+    if (!(a[q].s2 > 0.0)) continue;
+    xi[q] = {ziggurat_normal(m.key, 0), m.comps == 2 ? ziggurat_normal(m.key, 1) : 0.0};
+    const Cx move = a[q].m + real(std::sqrt(a[q].s2)) * xi[q];
+    g_w[q] = a[q].g * move;
+    if (std::fabs(g_w[q].im) >= 3.141592653589793) continue;
+    y[q] = m.x + (nonzero(a[q].g) ? expm1_c(g_w[q], m.comps) * inverse(a[q].g) : move);
+    open[q] = true;
+  }
+  for (int q = 0; q < count; q++)
+    if (open[q]) b[q] = mode_step(y[q], ms[q].w, ms[q].r, ms[q].mu, kT, dt, params, ms[q].comps, calculus);
+  for (int q = 0; q < count; q++) {
+    if (!open[q]) continue;
+    const Cx x = ms[q].x, yq = y[q];
+    const int comps = ms[q].comps;
+    y[q] = x;    // until accepted
+    const Cx z = b[q].g * (x - yq);
+    if (!(b[q].s2 > 0.0 && (comps == 2 || 1.0 + z.re > 0.0))) continue;
+    const Cx back = nonzero(b[q].g) ? log1p_c(z, comps) * inverse(b[q].g) : x - yq;
+    double log_alpha = (x.re * x.re + x.im * x.im - yq.re * yq.re - yq.im * yq.im) / (2.0 * ms[q].mu * kT);
+    const Cx shift = back - b[q].m;
+    const double xi2_back = (shift.re * shift.re + shift.im * shift.im) / b[q].s2;
+    log_alpha += log_proposal(xi2_back, b[q].g * back, comps) - log_proposal(xi[q].re * xi[q].re + xi[q].im * xi[q].im, g_w[q], comps);
+    log_alpha += 0.5 * comps * std::log(a[q].s2 / b[q].s2);
+    if (log_alpha >= 0.0 || uniform(ms[q].key, 2) < std::exp(log_alpha)) y[q] = yq;
+  }
 }
 
 // Orthonormal tangents e1, e2 of the contact plane (contact_step._tangents); in 2-D e1 = z x n, e2 = 0.
@@ -543,50 +557,69 @@ void FixFricgenViscousCubic::check_domain()
   }
 }
 
-// The engine's pairwise step of one pair (contact_step.update_pair) on the canonical copies i and c.
-void FixFricgenViscousCubic::step_pair(const Pair &p, uint64_t key)
+// The engine's pairwise step (contact_step.update_pair) of count <= BATCH pairs of one colour (no shared atom)
+// on their canonical copies i and c: each pair's mode, their moves together (move_batch), each pair's impulse.
+void FixFricgenViscousCubic::step_batch(const Pair *ps, int count, uint64_t key)
 {
-  double **x = atom->x, **omega = atom->omega;
-  const double *radius = atom->radius, *rmass = atom->rmass;
-  const int i = p.i, k = p.c;
-  const double dx = x[p.xj][0] - x[p.xi][0], dy = x[p.xj][1] - x[p.xi][1], dz = x[p.xj][2] - x[p.xi][2];
-  const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-  const double n[3] = {dx / r, dy / r, dz / r};
-  const double ri = radius[i], rk = radius[k], sigma = ri + rk;
-  const double w = weight(r / sigma, params) / sigma;
-  const double inv_ii = 1.0 / (inertia * rmass[i] * (ri * ri)), inv_ik = 1.0 / (inertia * rmass[k] * (rk * rk));
+  struct Contact {
+    int i, k;
+    double n[3], e1[3], e2[3], arms[2], inv_m[2], inv_i[2];
+  };
+  Contact cs[BATCH];
+  Move ms[BATCH];
+  Cx ys[BATCH];
   double **v = atom->v;
   const bool three = domain->dimension == 3;
-  const double inv_mi = 1.0 / rmass[i], inv_mk = 1.0 / rmass[k];
-  const double mu = inv_mi + inv_mk + ri * ri * inv_ii + rk * rk * inv_ik;
-  // u_perp = P (v_k - v_i) - (R_i w_i + R_k w_k) x n (F-4) as x = u_perp . (e1 + i e2): contact_step.contact_mode
-  const double wx = ri * omega[i][0] + rk * omega[k][0], wy = ri * omega[i][1] + rk * omega[k][1];
-  const double wz = ri * omega[i][2] + rk * omega[k][2];
-  const double cx = wy * n[2] - wz * n[1], cy = wz * n[0] - wx * n[2], cz = wx * n[1] - wy * n[0];
-  const double ux = v[k][0] - v[i][0] - cx, uy = v[k][1] - v[i][1] - cy, uz = v[k][2] - v[i][2] - cz;
-  double e1[3], e2[3];
-  tangents(n, three, e1, e2);
-  const Cx xm = {ux * e1[0] + uy * e1[1] + uz * e1[2], ux * e2[0] + uy * e2[1] + uz * e2[2]};
   const int comps = three ? 2 : 1;
-  const uint64_t pair = pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1);
-  const Cx y = mode_move(xm, w, r, mu, kT, update->dt, params, pair, comps, calculus, noise_on);
-  if (same(y, xm)) return;
-  const double jp = (xm.re - y.re) / mu, jq = (xm.im - y.im) / mu;    // impulse on i: u_perp -> u_perp - mu J
-  const double jx = jp * e1[0] + jq * e2[0], jy = jp * e1[1] + jq * e2[1], jz = jp * e1[2] + jq * e2[2];
-  const double tx = n[1] * jz - n[2] * jy, ty = n[2] * jx - n[0] * jz, tz = n[0] * jy - n[1] * jx;
-  const int particles[2] = {i, k};
-  const double signs[2] = {1.0, -1.0}, arms[2] = {ri, rk}, inv_m[2] = {inv_mi, inv_mk}, inv_i[2] = {inv_ii, inv_ik};
-  for (int s = 0; s < 2; s++) {
-    const int a = particles[s];
-    const double scale = signs[s] * inv_m[s], turn = arms[s] * inv_i[s];
-    v[a][0] += scale * jx;
-    v[a][1] += scale * jy;
-    v[a][2] += scale * jz;
-    omega[a][0] += turn * tx;
-    omega[a][1] += turn * ty;
-    omega[a][2] += turn * tz;
+  for (int q = 0; q < count; q++) {
+    const Pair &p = ps[q];
+    double **x = atom->x, **omega = atom->omega;
+    const double *radius = atom->radius, *rmass = atom->rmass;
+    const int i = p.i, k = p.c;
+    const double dx = x[p.xj][0] - x[p.xi][0], dy = x[p.xj][1] - x[p.xi][1], dz = x[p.xj][2] - x[p.xi][2];
+    const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double n[3] = {dx / r, dy / r, dz / r};
+    const double ri = radius[i], rk = radius[k], sigma = ri + rk;
+    const double w = weight(r / sigma, params) / sigma;
+    const double inv_ii = 1.0 / (inertia * rmass[i] * (ri * ri)), inv_ik = 1.0 / (inertia * rmass[k] * (rk * rk));
+    const double inv_mi = 1.0 / rmass[i], inv_mk = 1.0 / rmass[k];
+    const double mu = inv_mi + inv_mk + ri * ri * inv_ii + rk * rk * inv_ik;
+    // u_perp = P (v_k - v_i) - (R_i w_i + R_k w_k) x n (F-4) as x = u_perp . (e1 + i e2): contact_step.contact_mode
+    const double wx = ri * omega[i][0] + rk * omega[k][0], wy = ri * omega[i][1] + rk * omega[k][1];
+    const double wz = ri * omega[i][2] + rk * omega[k][2];
+    const double cx = wy * n[2] - wz * n[1], cy = wz * n[0] - wx * n[2], cz = wx * n[1] - wy * n[0];
+    const double ux = v[k][0] - v[i][0] - cx, uy = v[k][1] - v[i][1] - cy, uz = v[k][2] - v[i][2] - cz;
+    Contact &c = cs[q];
+    c = {i, k, {n[0], n[1], n[2]}, {}, {}, {ri, rk}, {inv_mi, inv_mk}, {inv_ii, inv_ik}};
+    tangents(n, three, c.e1, c.e2);
+    const double *e1 = c.e1, *e2 = c.e2;
+    const Cx xm = {ux * e1[0] + uy * e1[1] + uz * e1[2], ux * e2[0] + uy * e2[1] + uz * e2[2]};
+    ms[q] = {xm, w, r, mu, comps, pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1)};
   }
-  if (k >= atom->nlocal) touched[k] = 1;
+  move_batch(ms, count, kT, update->dt, params, calculus, noise_on, ys);
+  double **omega = atom->omega;
+  for (int q = 0; q < count; q++) {
+    const Cx xm = ms[q].x, y = ys[q];
+    if (same(y, xm)) continue;
+    const Contact &c = cs[q];
+    const double *n = c.n, *e1 = c.e1, *e2 = c.e2, mu = ms[q].mu;
+    const double jp = (xm.re - y.re) / mu, jq = (xm.im - y.im) / mu;    // impulse on i: u_perp -> u_perp - mu J
+    const double jx = jp * e1[0] + jq * e2[0], jy = jp * e1[1] + jq * e2[1], jz = jp * e1[2] + jq * e2[2];
+    const double tx = n[1] * jz - n[2] * jy, ty = n[2] * jx - n[0] * jz, tz = n[0] * jy - n[1] * jx;
+    const int particles[2] = {c.i, c.k};
+    const double signs[2] = {1.0, -1.0};
+    for (int s = 0; s < 2; s++) {
+      const int a = particles[s];
+      const double scale = signs[s] * c.inv_m[s], turn = c.arms[s] * c.inv_i[s];
+      v[a][0] += scale * jx;
+      v[a][1] += scale * jy;
+      v[a][2] += scale * jz;
+      omega[a][0] += turn * tx;
+      omega[a][1] += turn * ty;
+      omega[a][2] += turn * tz;
+    }
+    if (c.k >= atom->nlocal) touched[c.k] = 1;
+  }
 }
 
 // On each neighbour-list build (atoms are renumbered only then): every listed pair once, as (lower ID, higher ID),
@@ -708,15 +741,19 @@ void FixFricgenViscousCubic::end_of_step()
       phases *= 2;
     }
   // the pairs in contact in ID order, each in the phase of the halves that hold its owned atom
-  pairs.clear();
-  int most = 0;
+  // (each candidate is written and the count moves on for a contact: no branch to mispredict)
+  pairs.resize(candidates.size());
+  size_t kept = 0;
   for (const Pair &candidate : candidates) {
     const int i = candidate.xi, j = candidate.xj;
     const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
     const double range = WCA_RANGE * (radius[i] + radius[j]);
-    if (dx * dx + dy * dy + dz * dz >= range * range) continue;
-    pairs.push_back(candidate);
-    Pair &p = pairs.back();
+    pairs[kept] = candidate;
+    kept += dx * dx + dy * dy + dz * dz < range * range;
+  }
+  pairs.resize(kept);
+  int most = 0;
+  for (Pair &p : pairs) {
     for (int d = 0; d < 3; d++)
       if (split[d] && x[p.i][d] >= 0.5 * (domain->sublo[d] + domain->subhi[d])) p.phase += split[d];
     most = std::max(most, std::max(++degree[p.i], ++degree[p.c]));
@@ -748,10 +785,15 @@ void FixFricgenViscousCubic::end_of_step()
     sort_by(first, last, 64 * words, [](const Pair &p) { return p.colour; });
     first = last;
   }
-  // the phases one after another; the pairs of a phase in colour order
+  // the phases one after another; the pairs of a phase in colour order, up to BATCH of one colour at a time
   size_t q = 0;
   for (int phase = 0; phase < phases; phase++) {
-    for (; q < pairs.size() && pairs[q].phase == phase; q++) step_pair(pairs[q], key);
+    while (q < pairs.size() && pairs[q].phase == phase) {
+      size_t end = q + 1;
+      while (end < pairs.size() && end - q < BATCH && pairs[end].phase == phase && pairs[end].colour == pairs[q].colour) end++;
+      step_batch(&pairs[q], static_cast<int>(end - q), key);
+      q = end;
+    }
     if (phases == 1) break;
     comm->reverse_comm(this);    // touched ghost copies to their owners
     std::fill(touched.begin(), touched.end(), 0);

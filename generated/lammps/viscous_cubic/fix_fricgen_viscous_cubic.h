@@ -55,7 +55,7 @@ class FixFricgenViscousCubic : public Fix {
   void solvent_step();
   void collect_candidates();
   template <typename Key> void sort_by(size_t, size_t, int, Key);
-  void step_pair(const Pair &, uint64_t);
+  void step_batch(const Pair *, int, uint64_t);
 };
 
 }    // namespace LAMMPS_NS
