@@ -43,17 +43,18 @@ BLOCKS = 10
 #: The temperatures per slab and over the slit.
 KEYS = ("T_trans", "T_peculiar", "T_rot")
 #: The test's runs, for eta (800 t0, 550 t0 of data) and for the slit's T_pec (with GSD frames every 1 t0):
-#: A, every noise at kT = 1, B, without the rolling noise (eta: rolling.json's points and a second seed;
+#: A, every noise at kT = 1, B, without the rolling noise (eta: rolling.json's point and seeds 2-4;
 #: the 400 t0 reruns are the first 400 t0 of rolling.json's runs, so their eta is left out), C, the
-#: consistent model at the lower kT.
+#: consistent model at the lower kT (seeds 1-4).
 GROUPS = {
     "A": {"eta": ["point=r6k5_long"], "T": ["point=r6k5_T"]},
     "B": {
-        "eta": ["point=r6k5_norolling_long", "point=r6k5_norolling_long_s2"],
-        "T": ["point=r6k5_norolling_T", "point=r6k5_norolling_long_s2"],
+        "eta": ["point=r6k5_norolling_long", *(f"point=r6k5_norolling_long_s{k}" for k in (2, 3, 4))],
+        "T": ["point=r6k5_norolling_T", *(f"point=r6k5_norolling_long_s{k}" for k in (2, 3, 4))],
     },
-    "C": {"eta": ["point=r6k5_kT080", "point=r6k5_kT080_s2"], "T": ["point=r6k5_kT080", "point=r6k5_kT080_s2"]},
+    "C": {"eta": ["point=r6k5_kT080", *(f"point=r6k5_kT080_s{k}" for k in (2, 3, 4))]},
 }
+GROUPS["C"]["T"] = GROUPS["C"]["eta"]
 
 
 def pooled(frames: list[tuple], bins: int):
@@ -110,15 +111,21 @@ def weighted(pairs: list[tuple[float, float]]) -> list[float]:
 
 
 def combined(eta_runs: list[dict], t_runs: list[dict]) -> dict:
-    """The group's eta and slit T_pec (inverse-variance means), and for two eta runs their difference in
-    units of its error (the seed scatter against the frame errors)."""
+    """The group's eta and slit T_pec (inverse-variance means). With several seeds, eta's error is the larger of
+    the frame errors' (inverse-variance) and the seeds' scatter (standard deviation / sqrt(seeds)); the seeds'
+    chi^2 about the mean with the frame errors (n - 1 degrees of freedom) says which."""
+    eta = weighted([(r["eta"], r["eta_err"]) for r in eta_runs])
     out = {
         "runs": {"eta": [r["run"] for r in eta_runs], "T": [r["run"] for r in t_runs]},
-        "eta": weighted([(r["eta"], r["eta_err"]) for r in eta_runs]),
+        "eta": eta,
         "T_peculiar": weighted([(r["slit"]["T_peculiar"]["mean"], r["slit"]["T_peculiar"]["error"]) for r in t_runs]),
     }
-    if len(eta_runs) == 2:
-        out["seed_difference"] = compare(eta_runs[0]["eta"], eta_runs[0]["eta_err"], eta_runs[1]["eta"], eta_runs[1]["eta_err"])
+    if len(eta_runs) > 1:
+        values = np.array([r["eta"] for r in eta_runs])
+        scatter = float(values.std(ddof=1) / np.sqrt(values.size))
+        chi2 = float(sum(((r["eta"] - eta[0]) / r["eta_err"]) ** 2 for r in eta_runs))
+        out["seeds"] = {"values": values.tolist(), "scatter_error": scatter, "frame_error": eta[1], "chi2": chi2, "dof": values.size - 1}
+        out["eta"] = [eta[0], max(eta[1], scatter)]
     return out
 
 
