@@ -2,7 +2,8 @@
 style fricgen/coulomb_newton, in LAMMPS, on the same cores, measured alternately in one run.
 
 System: generated/lammps/coulomb_newton/in.coulomb_newton_2d_exact (2-D, N = 10 000 discs at area
-fraction 0.6, dt = 5e-3, kT = 1, no solvent: the contacts are the thermostat): WCA from lj/cut and the
+fraction 0.6; with --dimension 3 in.coulomb_newton_3d_exact, N = 22^3 = 10 648 spheres; dt = 5e-3, kT = 1, no
+solvent: the contacts are the thermostat): WCA from lj/cut and the
 fix, against the same input with the pair style fricgen/coulomb_newton (WCA + the explicit kick) in
 place of both. Rates are particle-steps per second of the timed run (after a 200-step warm-up, from
 LAMMPS's "Loop time"), medians over the repeats, under `mpirun -np 1` and `-np 2`.
@@ -10,7 +11,7 @@ LAMMPS's "Loop time"), medians over the repeats, under `mpirun -np 1` and `-np 2
 Printed: the cost per particle-step of each, the fix over the explicit pair style (1 and 2 ranks), and
 the 2-rank throughput of each over twice its 1-rank throughput (strong scaling on 2 cores).
 
-Run: python benchmarks/lammps_exact.py [--repeats 3] [--steps 1000] [--cells 100]
+Run: python benchmarks/lammps_exact.py [--repeats 3] [--steps 1000] [--dimension 2] [--cells 100 (2-D), 22 (3-D)]
      python benchmarks/lammps_exact.py --figure docs/lammps-exact-phases.png   (the phases' figure of the guide)
 """
 
@@ -26,9 +27,10 @@ from lammps_plugin import built_plugin, lammps_rate
 FIX = "fix             contact all fricgen/exact/coulomb_newton ${kT} ${seed} gamma_f 6.0 kappa_f 5.0 solvent ${gamma} ${gamma_r}\n"
 
 
-def inputs(folder: Path, work: Path, warmup: str = "200") -> dict[str, str]:
-    """The exact template (a warm-up of ``warmup`` steps first, a number or a variable) and its explicit twin."""
-    template = (folder / "in.coulomb_newton_2d_exact").read_text()
+def inputs(folder: Path, work: Path, warmup: str = "200", dimension: int = 2) -> dict[str, str]:
+    """The exact template in ``dimension`` (a warm-up of ``warmup`` steps first, a number or a variable) and its
+    explicit twin."""
+    template = (folder / f"in.coulomb_newton_{dimension}d_exact").read_text()
     template = template.replace("run             ${nrun}", f"run             {warmup}\nrun             ${{nrun}}")
     if FIX not in template:
         raise RuntimeError("in.coulomb_newton_2d_exact has no fix line as expected: regenerate it (fricgen lammps coulomb_newton)")
@@ -80,23 +82,26 @@ def main() -> None:
     parser.add_argument("--figure", metavar="PATH", help="draw the phases' figure into PATH instead of benchmarking")
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--steps", type=int, default=1000, help="timed steps per measurement")
-    parser.add_argument("--cells", type=int, default=100, help="lattice cells per side (N = cells^2)")
+    parser.add_argument("--dimension", type=int, choices=(2, 3), default=2)
+    parser.add_argument("--cells", type=int, help="lattice cells per side (N = cells^dimension; default 100 in 2-D, 22 in 3-D)")
     options = parser.parse_args()
     if options.figure:
         phase_figure(options.figure)
         return
     lammps, folder, plugin = built_plugin()
     work = Path(tempfile.mkdtemp(prefix="fricgen-bench-"))
-    scripts = inputs(folder, work)
-    extra = ["-var", "plugin", str(plugin), "-var", "solvent", "0", "-var", "cells", str(options.cells)]
+    scripts = inputs(folder, work, dimension=options.dimension)
+    cells = options.cells or (100 if options.dimension == 2 else 22)
+    extra = ["-var", "plugin", str(plugin), "-var", "solvent", "0", "-var", "cells", str(cells)]
     rates: dict[tuple[str, int], list[float]] = {}
     for _ in range(options.repeats):
         for ranks in (1, 2):
             for name, script in scripts.items():
                 rates.setdefault((name, ranks), []).append(lammps_rate(lammps, script, ranks, options.steps, extra, work))
     median = {key: statistics.median(values) for key, values in rates.items()}
-    n = options.cells**2
-    print(f"2-D, N = {n}, dt = 5e-3, no solvent, {options.steps} timed steps, medians of {options.repeats} alternating repeats:")
+    n = cells**options.dimension
+    runs = f"{options.steps} timed steps, medians of {options.repeats} alternating repeats"
+    print(f"{options.dimension}-D, N = {n}, dt = 5e-3, no solvent, {runs}:")
     for (name, ranks), values in sorted(rates.items()):
         spread = ", ".join(f"{v / 1e6:.2f}" for v in values)
         print(f"  {name:8s} {ranks} rank(s)  {1e6 / median[name, ranks]:.3f} us per particle-step  ({spread} M particle-steps/s)")

@@ -30,6 +30,8 @@ time is N / (rate dt). Printed: the ladders, the crossings, the costs, and the e
 time to simulate the same physical time over the fix's (the ratio by which the fix is ahead).
 
 Run: python benchmarks/lammps_time_to_accuracy.py [--cells 50] [--time 100] [--seeds 3] [--jobs 2]
+     python benchmarks/lammps_time_to_accuracy.py --crossings fix=1.8e-2,explicit=5.5e-4   (time only, at crossings
+     found before: where only the speed of an integrator changed, not its arithmetic, its ladder is unchanged)
 """
 
 from __future__ import annotations
@@ -133,6 +135,29 @@ def crossing(rows: list[tuple[float, str, dict[str, Estimate]]]) -> float | None
     return float(dt * (TOLERANCE / deviation(found)) ** (1.0 / power))
 
 
+def accuracy_ladders(options, run, n: int) -> dict[str, float] | None:
+    """Run and print the ladders (``run(name, dt, seed)`` gives a run's output); the crossing dt of each
+    integrator, or None (printed why) if one has none."""
+    with ThreadPoolExecutor(max_workers=options.jobs) as pool:
+        futures = {name: pool.submit(ladder, run, name, dts, options.seeds) for name, dts in LADDERS.items()}
+        ladders = {name: future.result() for name, future in futures.items()}
+    print(f"2-D, N = {n}, no solvent, 1 rank; per dt and seed {options.warmup:g} t0 discarded, {options.time:g} t0 sampled every")
+    print(f"{SAMPLE} t0; pooled over {options.seeds} seeds; d = max |T - kT| / kT; within: |T - kT| + 2 sigma <= {TOLERANCE:.1%} for")
+    print(f"both, off: |T - kT| - 2 sigma > {TOLERANCE:.1%}")
+    print(f"  {'integrator':10s} {'dt':>7s}  {'T_trans':>16s}  {'T_rot':>16s}  {'pe per atom':>16s}  {'d':>6s}  verdict")
+    for name, rows in ladders.items():
+        for dt, decided, found in rows:
+            cells = "  ".join(f"{e.mean:.4f} +- {e.error:.4f}" for e in found.values()) or f"{'':16s}  {'':16s}  {'':16s}"
+            d = f"{deviation(found):6.2%}" if found else f"{'':6s}"
+            print(f"  {name:10s} {dt:7.1e}  {cells}  {d}  {decided}")
+    chosen = {name: crossing(rows) for name, rows in ladders.items()}
+    missing = [name for name, dt in chosen.items() if dt is None]
+    if missing:
+        print(f"no dt of the ladder came within {TOLERANCE:.1%} for {', '.join(missing)}: no ratio (extend the ladder)")
+        return None
+    return chosen
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cells", type=int, default=50, help="lattice cells per side (N = cells^2)")
@@ -142,6 +167,7 @@ def main() -> None:
     parser.add_argument("--jobs", type=int, default=1, help="the ladders side by side (2 or 3) or one after the other (1)")
     parser.add_argument("--repeats", type=int, default=3, help="timed repeats at each integrator's dt")
     parser.add_argument("--steps", type=int, default=2000, help="timed steps per repeat")
+    parser.add_argument("--crossings", help="NAME=DT,...: skip the ladders and time these integrators at these dt")
     options = parser.parse_args()
     lammps, folder, plugin = built_plugin()
     work = Path(tempfile.mkdtemp(prefix="fricgen-bench-"))
@@ -160,23 +186,13 @@ def main() -> None:
         extra = variables(dt, round(options.warmup / dt), max(1, round(SAMPLE / dt)))
         return lammps_output(lammps, scripts[name], 1, round(options.time / dt), extra, work, seed)
 
-    with ThreadPoolExecutor(max_workers=options.jobs) as pool:
-        futures = {name: pool.submit(ladder, run, name, dts, options.seeds) for name, dts in LADDERS.items()}
-        ladders = {name: future.result() for name, future in futures.items()}
-    print(f"2-D, N = {n}, no solvent, 1 rank; per dt and seed {options.warmup:g} t0 discarded, {options.time:g} t0 sampled every")
-    print(f"{SAMPLE} t0; pooled over {options.seeds} seeds; d = max |T - kT| / kT; within: |T - kT| + 2 sigma <= {TOLERANCE:.1%} for")
-    print(f"both, off: |T - kT| - 2 sigma > {TOLERANCE:.1%}")
-    print(f"  {'integrator':10s} {'dt':>7s}  {'T_trans':>16s}  {'T_rot':>16s}  {'pe per atom':>16s}  {'d':>6s}  verdict")
-    for name, rows in ladders.items():
-        for dt, decided, found in rows:
-            cells = "  ".join(f"{e.mean:.4f} +- {e.error:.4f}" for e in found.values()) or f"{'':16s}  {'':16s}  {'':16s}"
-            d = f"{deviation(found):6.2%}" if found else f"{'':6s}"
-            print(f"  {name:10s} {dt:7.1e}  {cells}  {d}  {decided}")
-    chosen = {name: crossing(rows) for name, rows in ladders.items()}
-    missing = [name for name, dt in chosen.items() if dt is None]
-    if missing:
-        print(f"no dt of the ladder came within {TOLERANCE:.1%} for {', '.join(missing)}: no ratio (extend the ladder)")
-        return
+    if options.crossings:
+        chosen = {name: float(dt) for name, dt in (item.split("=") for item in options.crossings.split(","))}
+        print(f"2-D, N = {n}, no solvent, 1 rank; timed at the crossings given: {options.crossings}")
+    else:
+        chosen = accuracy_ladders(options, run, n)
+        if chosen is None:
+            return
     rates: dict[str, list[float]] = {}
     for _ in range(options.repeats):
         for name, dt in chosen.items():

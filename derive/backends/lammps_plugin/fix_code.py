@@ -19,8 +19,9 @@ halves; a pair belongs to the phase given by the halves holding its lower-ID ato
 one on a single rank). The phases run one after another; within a phase the same halves of different
 ranks are more than two contact reaches apart, so no atom is touched by two ranks. A rank updates the
 pairs of a phase in the engine's order: sorted by IDs, greedily edge-coloured, colour after colour
-(contact_step.colour_classes); an atom's ghost copies share one canonical copy (atom->map). After a
-phase, the touched ghost copies' velocities and spins go to their owners (reverse communication, a
+(contact_step.colour_classes), up to BATCH pairs of one colour together, stage by stage (move_batch: they share
+no atom, so this changes no result and lets the processor overlap their chains); an atom's ghost copies share
+one canonical copy (atom->map). After a phase, the touched ghost copies' velocities and spins go to their owners (reverse communication, a
 copy that was not touched carries none) and the owners' to every ghost (forward communication).
 On one rank the fix therefore reproduces the engine's step to round-off (a pair across the periodic
 boundary takes its vector from a ghost image); on several, the engine's step with the touching pairs split
