@@ -1,10 +1,11 @@
 """The C++ source of the LAMMPS fix ``fricgen/exact/<law>`` as a template that
 fricgen.derive.backends.lammps_plugin.fix_code fills (the law's kernels, the ported contact step, the step of
-one pair of the law's mode from fix_modes, the calculi): its keywords, checks, solvent step, pair collection,
-phases and communication; the design is in fix_code's docstring and docs/guide/lammps.md#the-exact-contact-step."""
+a batch of pairs of the law's mode from fix_modes, the calculi): its keywords, checks, solvent step, pair collection,
+phases, and fix_comm's communication; the design is in fix_code's docstring and docs/guide/lammps.md#the-exact-contact-step."""
 
 from string import Template
 
+from .fix_comm import COMMUNICATION
 from .templates import LAW_CONSTANTS
 
 FIX_SOURCE = Template(
@@ -357,52 +358,6 @@ void ${fix_cls}::end_of_step()
   }
 }
 
-int ${fix_cls}::pack_forward_comm(int n, int *send, double *buf, int, int *)
-{
-  double **v = atom->v, **omega = atom->omega;
-  int m = 0;
-  for (int s = 0; s < n; s++) {
-    const int i = send[s];
-    for (int a = 0; a < 3; a++) buf[m++] = v[i][a];
-    for (int a = 0; a < 3; a++) buf[m++] = omega[i][a];
-  }
-  return m;
-}
-
-void ${fix_cls}::unpack_forward_comm(int n, int first, double *buf)
-{
-  double **v = atom->v, **omega = atom->omega;
-  int m = 0;
-  for (int i = first; i < first + n; i++) {
-    for (int a = 0; a < 3; a++) v[i][a] = buf[m++];
-    for (int a = 0; a < 3; a++) omega[i][a] = buf[m++];
-  }
-}
-
-int ${fix_cls}::pack_reverse_comm(int n, int first, double *buf)
-{
-  double **v = atom->v, **omega = atom->omega;
-  int m = 0;
-  for (int i = first; i < first + n; i++) {
-    buf[m++] = touched[i] ? 1.0 : 0.0;
-    for (int a = 0; a < 3; a++) buf[m++] = v[i][a];
-    for (int a = 0; a < 3; a++) buf[m++] = omega[i][a];
-  }
-  return m;
-}
-
-// A touched copy's velocity and spin replace the receiver's (no other rank touched that atom in the phase).
-void ${fix_cls}::unpack_reverse_comm(int n, int *receive, double *buf)
-{
-  double **v = atom->v, **omega = atom->omega;
-  int m = 0;
-  for (int s = 0; s < n; s++, m += 7) {
-    const int j = receive[s];
-    if (buf[m] == 0.0) continue;
-    for (int a = 0; a < 3; a++) v[j][a] = buf[m + 1 + a];
-    for (int a = 0; a < 3; a++) omega[j][a] = buf[m + 4 + a];
-    touched[j] = 1;
-  }
-}
 """
+    + COMMUNICATION
 )
