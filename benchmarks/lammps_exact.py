@@ -30,10 +30,11 @@ FIX = "fix             contact all fricgen/exact/coulomb_newton ${kT} ${seed} ga
 def inputs(folder: Path, work: Path, warmup: str = "200", dimension: int = 2) -> dict[str, str]:
     """The exact template in ``dimension`` (a warm-up of ``warmup`` steps first, a number or a variable) and its
     explicit twin."""
-    template = (folder / f"in.coulomb_newton_{dimension}d_exact").read_text()
+    name = f"in.coulomb_newton_{dimension}d_exact"
+    template = (folder / name).read_text()
     template = template.replace("run             ${nrun}", f"run             {warmup}\nrun             ${{nrun}}")
     if FIX not in template:
-        raise RuntimeError("in.coulomb_newton_2d_exact has no fix line as expected: regenerate it (fricgen lammps coulomb_newton)")
+        raise RuntimeError(f"{name} has no fix line as expected: regenerate it (fricgen lammps coulomb_newton)")
     explicit = template.replace(FIX, "").replace("pair_modify     shift yes\n", "")
     explicit = explicit.replace(
         "pair_style      lj/cut 1.122462048309373\npair_coeff      * * 1.0 1.0\n",

@@ -52,9 +52,8 @@ GROUPS = {
         "eta": ["point=r6k5_norolling_long", *(f"point=r6k5_norolling_long_s{k}" for k in (2, 3, 4))],
         "T": ["point=r6k5_norolling_T", *(f"point=r6k5_norolling_long_s{k}" for k in (2, 3, 4))],
     },
-    "C": {"eta": ["point=r6k5_kT080", *(f"point=r6k5_kT080_s{k}" for k in (2, 3, 4))]},
+    "C": {kind: ["point=r6k5_kT080", *(f"point=r6k5_kT080_s{k}" for k in (2, 3, 4))] for kind in ("eta", "T")},
 }
-GROUPS["C"]["T"] = GROUPS["C"]["eta"]
 
 
 def pooled(frames: list[tuple], bins: int):
