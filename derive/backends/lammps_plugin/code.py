@@ -11,6 +11,8 @@ symbol). The hand-written numerics, erfcx and the counter-based normals of fricg
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import sympy as sp
 from sympy.integrals.quadrature import gauss_legendre
 from sympy.printing.cxx import CXX17CodePrinter
@@ -127,9 +129,21 @@ def kernel(name: str, args: str, expr: sp.Expr, doc: str, parameters: list[sp.Sy
 # --- a law's kernels ---------------------------------------------------------------------------------
 
 
-def law_kernels(law: FrictionLaw, model: NoiseModel, order: int) -> str:
-    """weight (if the law has one), friction, friction_over_u and noise_amplitude of ``model``'s calculus,
-    with the quadrature helpers of (F-22) when D has no closed form."""
+class Formula(NamedTuple):
+    """A kernel in u as both printers take it (:func:`kernel`, held_code.held_kernel): its name, Python argument
+    list (SIGNATURES), expression, docstring and limit at u -> 0+ (None: no guard)."""
+
+    name: str
+    args: str
+    expr: sp.Expr
+    doc: str
+    at_zero: sp.Expr | None
+
+
+def law_kernels(law: FrictionLaw, model: NoiseModel, order: int, in_u: bool = True) -> str:
+    """weight (if the law has one), friction, friction_over_u and noise_amplitude of ``model``'s calculus (these two
+    only ``in_u``: the fix prints its kernels in u with parts held per pair, held_code), with the quadrature helpers
+    of (F-22) when D has no closed form."""
     params = [p.symbol for p in law.parameters]
     parts = []
     if law.weight is not None:
@@ -138,14 +152,22 @@ def law_kernels(law: FrictionLaw, model: NoiseModel, order: int) -> str:
         )
     doc = f"f(u, w, r) = {law.source}, the magnitude of the friction force (it opposes the sliding)."
     parts.append(kernel("friction", "u, w, r, params", law.friction, doc, params))
+    if in_u:
+        formula = ratio_formula(law)
+        parts.append(kernel(*formula[:4], params, formula.at_zero))
+    if not model.closed_form:
+        parts += quadrature_helpers(law, model, order)
+    if in_u:
+        parts.append(amplitude_kernel(law, model))
+    return "\n".join(parts)
+
+
+def ratio_formula(law: FrictionLaw) -> Formula:
+    """f/u, the factor of the tangential velocity."""
     ratio = sp.piecewise_fold((law.friction / u).rewrite(sp.Piecewise))
     at_zero = zero_speed_limit(ratio)
     doc = equation("f/u", ratio, f"the factor of the tangential velocity{zero_speed_note(at_zero)}", "")
-    parts.append(kernel("friction_over_u", "u, w, r, params", ratio, doc, params, at_zero))
-    if not model.closed_form:
-        parts += quadrature_helpers(law, model, order)
-    parts.append(amplitude_kernel(law, model))
-    return "\n".join(parts)
+    return Formula("friction_over_u", "u, w, r, params", ratio, doc, at_zero)
 
 
 def quadrature_helpers(law: FrictionLaw, model: NoiseModel, order: int) -> list[str]:
@@ -162,17 +184,24 @@ def quadrature_helpers(law: FrictionLaw, model: NoiseModel, order: int) -> list[
     return parts
 
 
+def amplitude_formula(model: NoiseModel) -> Formula:
+    """noise_amplitude_<calculus> of ``model`` in closed form."""
+    c, a = model.calculus.value, compact(model.variance_scale)
+    at_zero = zero_speed_limit(model.amplitude)
+    at_zero = None if at_zero is sp.nan else at_zero
+    how = "D = f/u as nu = 0" if a == 0 else f"(F-22) in closed form with kT nu = {a}"
+    doc = equation("D(u)", model.amplitude, f"the {c} calculus: {how}{zero_speed_note(at_zero)}", "")
+    return Formula(f"noise_amplitude_{c}", "u, w, r, mu, kT, params", model.amplitude, doc, at_zero)
+
+
 def amplitude_kernel(law: FrictionLaw, model: NoiseModel) -> str:
     """noise_amplitude_<calculus> of ``model``: its closed form, or the quadrature of (F-22) (quadrature_helpers)."""
     params = [p.symbol for p in law.parameters]
+    if model.closed_form:
+        formula = amplitude_formula(model)
+        return kernel(*formula[:4], params, formula.at_zero)
     c, a = model.calculus.value, compact(model.variance_scale)
     args = "u, w, r, mu, kT, params"
-    if model.closed_form:
-        at_zero = zero_speed_limit(model.amplitude)
-        at_zero = None if at_zero is sp.nan else at_zero
-        how = "D = f/u as nu = 0" if a == 0 else f"(F-22) in closed form with kT nu = {a}"
-        doc = equation("D(u)", model.amplitude, f"the {c} calculus: {how}{zero_speed_note(at_zero)}", "")
-        return kernel(f"noise_amplitude_{c}", args, model.amplitude, doc, params, at_zero)
     factor = table_factor(law, model)
     doc = (
         f"D(u) = (1/a) int_u^oo f(s) exp(-(s**2 - u**2)/(2*a)) ds (F-22), a = kT nu = {a} ({c} calculus),\n"
@@ -185,11 +214,11 @@ def amplitude_kernel(law: FrictionLaw, model: NoiseModel) -> str:
     return f"{comment(doc)}inline double noise_amplitude_{c}({SIGNATURES[args]})\n{body}"
 
 
-def slope_kernel(law: FrictionLaw) -> str:
+def slope_formula(law: FrictionLaw) -> Formula:
     """friction_slope, df/du (the Itô drift of the HK calculus in the pairwise step), as the Numba kernels print it."""
     slope = sp.diff(sp.piecewise_fold(law.friction.rewrite(sp.Piecewise)), u)
     doc = equation("df/du", slope, "the slope of f in u (the Itô drift of the HK calculus needs it, D' = (u f' - f)/u**2)", "")
-    return kernel("friction_slope", "u, w, r, params", slope, doc, [p.symbol for p in law.parameters])
+    return Formula("friction_slope", "u, w, r, params", slope, doc, None)
 
 
 def potential_kernels(potential: Potential) -> str:

@@ -94,22 +94,25 @@ struct ModeStep {
 
 // The proposal from the mode x (contact_step.mode_step): (f/u, m, s2, g), y = x + (e^(g W) - 1)/g,
 // W = m + sqrt(s2) (xi1 + i xi2), g the conjugate of grad ln sqrt(D).
-inline ModeStep mode_step(Cx x, double w, double r, double mu, double kT, double dt, const double *params, int comps, int calculus)
+// The pair's parts of the law free of u are in held (hold).
+inline ModeStep mode_step(Cx x, double w, double r, double mu, double kT, double dt, const double *params, int comps, int calculus,
+                          const double *held)
 {
-  const double u = comps == 1 ? std::fabs(x.re) : std::sqrt(x.re * x.re + x.im * x.im);
-  const double ratio = friction_over_u(u, w, r, params);
-  const double amplitude = noise_amplitude(calculus, u, w, r, mu, kT, params);
   const double THETA = THETAS[calculus];
+  const double inv_mu = 1.0 / mu, inv_spread = 1.0 / ((1.0 - THETA) * mu * kT);    // divisions off the chain from u
+  const double u = comps == 1 ? std::fabs(x.re) : std::sqrt(x.re * x.re + x.im * x.im);
+  const double ratio = friction_over_u(u, w, r, params, held);
+  const double amplitude = noise_amplitude(calculus, u, w, r, mu, kT, params, held);
   double slope_over_u;
   if (THETA == 1.0)    // D'/u with D = f/u
-    slope_over_u = u > 0.0 ? (friction_slope(u, w, r, params) - ratio) / (u * u) : 0.0;
+    slope_over_u = u > 0.0 ? (friction_slope(u, w, r, params, held + SLOPE_AT) - ratio) / (u * u) : 0.0;
   else
-    slope_over_u = (amplitude - ratio) / ((1.0 - THETA) * mu * kT);
-  const double rate = mu * amplitude;
+    slope_over_u = (amplitude - ratio) * inv_spread;
+  const double rate = mu * amplitude, inv_amplitude = 1.0 / amplitude;
   const double decay = std::expm1(-rate * dt);
-  const double span = rate > 0.0 ? -decay / rate : dt;
+  const double span = rate > 0.0 ? -decay * inv_amplitude * inv_mu : dt;
   const double s2 = -mu * kT * decay * (2.0 + decay);
-  const Cx g = real(amplitude > 0.0 ? 0.5 * slope_over_u / amplitude : 0.0) * Cx{x.re, -x.im};
+  const Cx g = real(amplitude > 0.0 ? 0.5 * slope_over_u * inv_amplitude : 0.0) * Cx{x.re, -x.im};
   Cx m = real(-mu * ratio + THETA * mu * mu * kT * slope_over_u) * x * real(span);
   if (comps == 1) m = m - real(0.5) * g * real(s2);
   return {ratio, m, s2, g};
@@ -120,12 +123,14 @@ inline double log_proposal(double xi2, Cx g_w, int comps)
   return -0.5 * xi2 - comps * g_w.re;
 }
 
-// A pair's mode as its move reads it: x, the law's w and r, the mode's mobility mu, its components and noise key.
+// A pair's mode as its move reads it: x, the law's w and r, the mode's mobility mu, its components, noise key and
+// the law's parts free of u (hold).
 struct Move {
   Cx x;
   double w, r, mu;
   int comps;
   uint64_t key;
+  double held[HELD];
 };
 
 // Pairs of one colour share no atom: the fix moves up to BATCH of them together, one stage after the other,
@@ -140,7 +145,7 @@ inline void move_batch(const Move *ms, int count, double kT, double dt, const do
   ModeStep a[BATCH], b[BATCH];
   Cx xi[BATCH], g_w[BATCH];
   bool open[BATCH];    // a proposal y awaits its acceptance
-  for (int q = 0; q < count; q++) a[q] = mode_step(ms[q].x, ms[q].w, ms[q].r, ms[q].mu, kT, dt, params, ms[q].comps, calculus);
+  for (int q = 0; q < count; q++) a[q] = mode_step(ms[q].x, ms[q].w, ms[q].r, ms[q].mu, kT, dt, params, ms[q].comps, calculus, ms[q].held);
   for (int q = 0; q < count; q++) {
     const Move &m = ms[q];
     y[q] = m.x;
@@ -158,7 +163,7 @@ inline void move_batch(const Move *ms, int count, double kT, double dt, const do
     open[q] = true;
   }
   for (int q = 0; q < count; q++)
-    if (open[q]) b[q] = mode_step(y[q], ms[q].w, ms[q].r, ms[q].mu, kT, dt, params, ms[q].comps, calculus);
+    if (open[q]) b[q] = mode_step(y[q], ms[q].w, ms[q].r, ms[q].mu, kT, dt, params, ms[q].comps, calculus, ms[q].held);
   for (int q = 0; q < count; q++) {
     if (!open[q]) continue;
     const Cx x = ms[q].x, yq = y[q];
@@ -172,7 +177,13 @@ inline void move_batch(const Move *ms, int count, double kT, double dt, const do
     const double xi2_back = (shift.re * shift.re + shift.im * shift.im) / b[q].s2;
     log_alpha += log_proposal(xi2_back, b[q].g * back, comps) - log_proposal(xi[q].re * xi[q].re + xi[q].im * xi[q].im, g_w[q], comps);
     log_alpha += 0.5 * comps * std::log(a[q].s2 / b[q].s2);
-    if (log_alpha >= 0.0 || uniform(ms[q].key, 2) < std::exp(log_alpha)) y[q] = yq;
+    // accepted if U < e^(log alpha); e^a >= 1 + a, so U < 1 + a decides most without the exp
+    if (log_alpha >= 0.0) {
+      y[q] = yq;
+      continue;
+    }
+    const double chance = uniform(ms[q].key, 2);
+    if (chance < 1.0 + log_alpha || chance < std::exp(log_alpha)) y[q] = yq;
   }
 }
 
@@ -244,7 +255,8 @@ class ${fix_cls} : public Fix {
   double params[${nparams}];
   class NeighList *list;
   bigint built;                          // neighbor->ncalls when the candidates were collected
-  std::vector<Pair> candidates, pairs;    // the listed pairs in ID order; this step's contacts
+  std::vector<Pair> candidates, pairs;    // the listed pairs in ID order; this step's contacts (its first contacts)
+  size_t contacts;
   std::vector<Pair> scratch;
   std::vector<std::pair<tagint, int>> order;    // (ID, index) of the owned atoms, by ID
   std::vector<int> place, degree, counts;       // place: an owned atom's position in order
@@ -264,22 +276,20 @@ class ${fix_cls} : public Fix {
 
 
 def fix_files(
-    fields: dict[str, str], kernels: str, support: str, ziggurat: str, weighted: bool, calculi: list[str], mode: str
+    fields: dict[str, str], kernels: tuple[str, str], support: str, ziggurat: str, weighted: bool, calculi: list[str], mode: str
 ) -> dict[str, str]:
     """The fix's header and source (by file name) of a law on ``mode``, from the pair style's ``fields``, the
-    law's C++ ``kernels`` (with friction_slope and noise_amplitude_<c> of each of its ``calculi``), the shared
-    ``support`` code, the ``ziggurat`` (with the mode's stream constant) and whether f has a weight."""
+    law's C++ ``kernels`` and its functions hold and noise_amplitude over its ``calculi`` (held_code.fix_kernels),
+    the shared ``support`` code, the ``ziggurat`` (with the mode's stream constant) and whether f has a weight."""
     values = {
         **fields,
         "fix_cls": fix_class(fields["law"]),
         "calculi_list": calculi_list(calculi),
         "has_calculus": ", ".join("true" if c in calculi else "false" for c in THETA),
-        "dispatch": "".join(
-            f"  if (c == {k}) return noise_amplitude_{c}(u, w, r, mu, kT, params);\n" for k, c in enumerate(THETA) if c in calculi
-        ),
         "support": support,
         "ziggurat": ziggurat,
-        "kernels": kernels,
+        "kernels": kernels[0],
+        "dispatch": kernels[1],
         "step_code": STEP_CODE,
         "weight_call": "weight(r / sigma, params) / sigma" if weighted else "1.0",
         "stream": STREAM[mode],

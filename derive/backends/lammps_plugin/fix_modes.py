@@ -45,7 +45,14 @@ def batch_step(comment: str, contact: str, before: str, prepare: str, impulse: s
 """
         + indent(PAIR_GEOMETRY, "  ")
         + prepare
-        + r"""    ms[q] = {xm, w, r, mu, comps, pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1)};
+        + r"""    Move &m = ms[q];    // field by field: held is written by hold, not zeroed first
+    m.x = xm;
+    m.w = w;
+    m.r = r;
+    m.mu = mu;
+    m.comps = comps;
+    m.key = pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1);
+    hold(calculus, m.held, w, r, mu, kT, params);
   }
   move_batch(ms, count, kT, update->dt, params, calculus, noise_on, ys);
   double **omega = atom->omega;

@@ -46,13 +46,7 @@ const bool HAS_CALCULUS[3] = {${has_calculus}};
 ${support}${ziggurat}
 // --- the law's kernels (derive, verified: ${verified}) -------------------------------------------
 
-${kernels}
-// D of the calculus with index c (CALCULI).
-inline double noise_amplitude(int c, double u, double w, double r, double mu, double kT, const double *params)
-{
-${dispatch}  return NAN;
-}
-${step_code}}    // namespace
+${kernels}${dispatch}${step_code}}    // namespace
 
 ${fix_cls}::${fix_cls}(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg), list(nullptr)
 {
@@ -113,6 +107,7 @@ ${fix_cls}::${fix_cls}(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg),
   comm_forward = 6;
   comm_reverse = 7;
   reach = 0.0;
+  contacts = 0;
   built = -1;
 }
 
@@ -226,6 +221,7 @@ void ${fix_cls}::collect_candidates()
   // by lower ID (counting sort), then each atom's partners by higher ID (a handful: insertion sort)
   for (size_t o = 0; o < order.size(); o++) counts[o + 1] += counts[o];
   candidates.resize(scratch.size());
+  pairs.resize(candidates.size());    // room for every candidate: a step writes its contacts first
   for (const Pair &p : scratch) candidates[counts[place[p.i]]++] = p;
   for (size_t o = 0, first = 0; o < order.size(); first = counts[o++])
     for (size_t q = first + 1; q < static_cast<size_t>(counts[o]); q++) {
@@ -299,32 +295,31 @@ void ${fix_cls}::end_of_step()
     }
   // the pairs in contact in ID order, each in the phase of the halves that hold its owned atom
   // (each candidate is written and the count moves on for a contact: no branch to mispredict)
-  pairs.resize(candidates.size());
-  size_t kept = 0;
+  contacts = 0;
   for (const Pair &candidate : candidates) {
     const int i = candidate.xi, j = candidate.xj;
     const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
     const double range = WCA_RANGE * (radius[i] + radius[j]);
-    pairs[kept] = candidate;
-    kept += dx * dx + dy * dy + dz * dz < range * range;
+    pairs[contacts] = candidate;
+    contacts += dx * dx + dy * dy + dz * dz < range * range;
   }
-  pairs.resize(kept);
   int most = 0;
-  for (Pair &p : pairs) {
+  for (size_t q = 0; q < contacts; q++) {
+    Pair &p = pairs[q];
     for (int d = 0; d < 3; d++)
       if (split[d] && x[p.i][d] >= 0.5 * (domain->sublo[d] + domain->subhi[d])) p.phase += split[d];
     most = std::max(most, std::max(++degree[p.i], ++degree[p.c]));
   }
-  for (const Pair &p : pairs) degree[p.i] = degree[p.c] = 0;
-  if (phases > 1) sort_by(0, pairs.size(), phases, [](const Pair &p) { return p.phase; });
+  for (size_t q = 0; q < contacts; q++) degree[pairs[q].i] = degree[pairs[q].c] = 0;
+  if (phases > 1) sort_by(0, contacts, phases, [](const Pair &p) { return p.phase; });
   // greedy edge colouring in pair order within each phase (contact_step.colour_classes): a pair takes the
   // lowest colour free at both atoms; fewer than 2 most colours are needed
   const int words = (2 * most) / 64 + 1;
   if (used.size() < degree.size() * words) used.assign(degree.size() * words, 0);
   size_t first = 0;
-  while (first < pairs.size()) {
+  while (first < contacts) {
     size_t last = first;
-    while (last < pairs.size() && pairs[last].phase == pairs[first].phase) last++;
+    while (last < contacts && pairs[last].phase == pairs[first].phase) last++;
     for (size_t q = first; q < last; q++) {
       Pair &p = pairs[q];
       uint64_t *ui = &used[static_cast<size_t>(p.i) * words], *uc = &used[static_cast<size_t>(p.c) * words];
@@ -345,9 +340,9 @@ void ${fix_cls}::end_of_step()
   // the phases one after another; the pairs of a phase in colour order, up to BATCH of one colour at a time
   size_t q = 0;
   for (int phase = 0; phase < phases; phase++) {
-    while (q < pairs.size() && pairs[q].phase == phase) {
+    while (q < contacts && pairs[q].phase == phase) {
       size_t end = q + 1;
-      while (end < pairs.size() && end - q < BATCH && pairs[end].phase == phase && pairs[end].colour == pairs[q].colour) end++;
+      while (end < contacts && end - q < BATCH && pairs[end].phase == phase && pairs[end].colour == pairs[q].colour) end++;
       step_batch(&pairs[q], static_cast<int>(end - q), key);
       q = end;
     }

@@ -35,9 +35,10 @@ from ...law.laws import FrictionLaw
 from ...law.names import camel
 from ...noise.derivation import NoiseModel
 from ..printing import header
-from .code import amplitude_kernel, law_kernels, potential_kernels, slope_kernel, wca
+from .code import law_kernels, potential_kernels, wca
 from .fix_code import fix_files, plugin_fields
 from .fix_inputs import exact_inputs
+from .held_code import fix_kernels
 from .mode_code import mode_compute, mode_fields, ziggurat_code, ziggurat_support
 from .plugin_source import PLUGIN, PLUGIN_ABI
 from .support_code import support
@@ -277,9 +278,7 @@ def plugin_files(
         "CMakeLists.txt": hash_mark + CMAKE.substitute(fields),
     }
     # the pairwise contact step as a fix (fix_code), drawing the engine's normals of the mode's stream
-    base = next((m for m in fix_models.values() if not m.closed_form), model)  # with the quadrature's helpers if any D needs them
-    others = [amplitude_kernel(law, m) for m in fix_models.values() if m is not base]
-    kernels = "\n".join([law_kernels(law, base, QUADRATURE_ORDER), *others, slope_kernel(law)])
+    kernels = fix_kernels(law, fix_models, QUADRATURE_ORDER)
     normals = ziggurat_code(*ziggurat) if law.mode == "sliding" else ziggurat_support(law.mode, *ziggurat)
     fix = fix_files(fields | _law_values(law, model), kernels, support(), normals, law.weight is not None, list(fix_models), law.mode)
     files |= {name: cxx + text for name, text in fix.items()}

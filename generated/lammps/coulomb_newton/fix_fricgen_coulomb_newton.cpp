@@ -217,85 +217,161 @@ inline double friction(double u, double w, double r, const double *params)
 }
 
 // f/u = Piecewise((gamma_f, gamma_f*u <= kappa_f*w), (kappa_f*w/u, True)), the factor of the tangential velocity.
-inline double friction_over_u(double u, double w, double r, const double *params)
+// Its parts free of u (1) are held once per pair (hold_friction_over_u).
+inline void hold_friction_over_u(double *held, double w, double r, const double *params)
 {
-  const double gamma_f = params[0];
   const double kappa_f = params[1];
   (void) r;
-  if (gamma_f*u <= kappa_f*w) {
+  held[0] = kappa_f*w;
+}
+inline double friction_over_u(double u, double w, double r, const double *params, const double *held)
+{
+  const double gamma_f = params[0];
+  (void) w;
+  (void) r;
+  if (held[0] >= gamma_f*u) {
     return gamma_f;
   }
-  return kappa_f*w/u;
+  return held[0]/u;
+}
+
+// df/du = Piecewise((gamma_f, gamma_f*u <= kappa_f*w), (0, True)), the slope of f in u (the Itô drift of the HK calculus needs it, D' = (u f' - f)/u**2).
+// Its parts free of u (1) are held once per pair (hold_friction_slope).
+inline void hold_friction_slope(double *held, double w, double r, const double *params)
+{
+  const double kappa_f = params[1];
+  (void) r;
+  held[0] = kappa_f*w;
+}
+inline double friction_slope(double u, double w, double r, const double *params, const double *held)
+{
+  const double gamma_f = params[0];
+  (void) w;
+  (void) r;
+  if (held[0] >= gamma_f*u) {
+    return gamma_f;
+  }
+  return 0.0;
 }
 
 // D(u), the ito calculus: (F-22) in closed form with kT nu = kT*mu:
 // -gamma_f*exp((u**2 - kappa_f**2*w**2/gamma_f**2)/(2*kT*mu)) + gamma_f + sqrt(2)*sqrt(pi)*kappa_f*w*exp(u**2/(2*kT*mu))*erfc(sqrt(2)*kappa_f*w/(2*gamma_f*sqrt(kT*mu)))/(2*sqrt(kT*mu))  if u < kappa_f*w/gamma_f
 // sqrt(2)*sqrt(pi)*kappa_f*w*exp(u**2/(2*kT*mu))*erfc(sqrt(2)*u/(2*sqrt(kT*mu)))/(2*sqrt(kT*mu))  otherwise
-inline double noise_amplitude_ito(double u, double w, double r, double mu, double kT, const double *params)
+// Its parts free of u (7) are held once per pair (hold_noise_amplitude_ito).
+inline void hold_noise_amplitude_ito(double *held, double w, double r, double mu, double kT, const double *params)
 {
   const double gamma_f = params[0];
   const double kappa_f = params[1];
   (void) r;
-  if (u < kappa_f*w/gamma_f) {
-    const double cse0 = (1.0/std::sqrt(kT*mu));
-    const double cse1 = ((1.0/2.0))*(fricgen_powi(u, 2) - fricgen_powi(kappa_f, 2)*fricgen_powi(w, 2)/fricgen_powi(gamma_f, 2))/(kT*mu);
-    const double cse2 = std::exp(cse1);
-    return 1.2533141373155003*cse0*cse2*kappa_f*w*fricgen_erfcx(0.7071067811865476*cse0*kappa_f*w/gamma_f) - gamma_f*((cse1) < -0.6931471805599453 ? (cse2) - 1.0 : std::expm1(cse1));
+  const double pair0 = (1.0/std::sqrt(kT*mu));
+  const double pair1 = 0.7071067811865476*pair0;
+  const double pair2 = kappa_f*w;
+  const double pair3 = pair2/gamma_f;
+  const double pair4 = 1.2533141373155003*pair0*pair2;
+  held[0] = -fricgen_powi(kappa_f, 2)*fricgen_powi(w, 2)/fricgen_powi(gamma_f, 2);
+  held[1] = ((1.0/2.0))/(kT*mu);
+  held[2] = -gamma_f;
+  held[3] = pair4*fricgen_erfcx(pair1*pair3);
+  held[4] = pair3;
+  held[5] = pair1;
+  held[6] = pair4;
+}
+inline double noise_amplitude_ito(double u, double w, double r, double mu, double kT, const double *params, const double *held)
+{
+  (void) params;
+  (void) w;
+  (void) r;
+  (void) mu;
+  (void) kT;
+  if (held[4] > u) {
+    const double cse0 = held[1]*(held[0] + fricgen_powi(u, 2));
+    const double cse1 = std::exp(cse0);
+    return cse1*held[3] + held[2]*((cse0) < -0.6931471805599453 ? (cse1) - 1.0 : std::expm1(cse0));
   }
-  const double cse0 = (1.0/std::sqrt(kT*mu));
-  return 1.2533141373155003*cse0*kappa_f*w*fricgen_erfcx(0.7071067811865476*cse0*u);
+  return held[6]*fricgen_erfcx(held[5]*u);
 }
 
 // D(u), the stratonovich calculus: (F-22) in closed form with kT nu = kT*mu/2:
 // -gamma_f*exp((u**2 - kappa_f**2*w**2/gamma_f**2)/(kT*mu)) + gamma_f + sqrt(pi)*kappa_f*w*exp(u**2/(kT*mu))*erfc(kappa_f*w/(gamma_f*sqrt(kT*mu)))/sqrt(kT*mu)  if u < kappa_f*w/gamma_f
 // sqrt(pi)*kappa_f*w*exp(u**2/(kT*mu))*erfc(u/sqrt(kT*mu))/sqrt(kT*mu)  otherwise
-inline double noise_amplitude_stratonovich(double u, double w, double r, double mu, double kT, const double *params)
+// Its parts free of u (7) are held once per pair (hold_noise_amplitude_stratonovich).
+inline void hold_noise_amplitude_stratonovich(double *held, double w, double r, double mu, double kT, const double *params)
 {
   const double gamma_f = params[0];
   const double kappa_f = params[1];
   (void) r;
-  if (u < kappa_f*w/gamma_f) {
-    const double cse0 = (1.0/std::sqrt(kT*mu));
-    const double cse1 = (fricgen_powi(u, 2) - fricgen_powi(kappa_f, 2)*fricgen_powi(w, 2)/fricgen_powi(gamma_f, 2))/(kT*mu);
-    const double cse2 = std::exp(cse1);
-    return 1.772453850905516*cse0*cse2*kappa_f*w*fricgen_erfcx(cse0*kappa_f*w/gamma_f) - gamma_f*((cse1) < -0.6931471805599453 ? (cse2) - 1.0 : std::expm1(cse1));
+  const double pair0 = (1.0/std::sqrt(kT*mu));
+  const double pair1 = kappa_f*w;
+  const double pair2 = pair1/gamma_f;
+  const double pair3 = 1.772453850905516*pair0*pair1;
+  held[0] = -fricgen_powi(kappa_f, 2)*fricgen_powi(w, 2)/fricgen_powi(gamma_f, 2);
+  held[1] = 1.0/(kT*mu);
+  held[2] = -gamma_f;
+  held[3] = pair3*fricgen_erfcx(pair0*pair2);
+  held[4] = pair2;
+  held[5] = pair0;
+  held[6] = pair3;
+}
+inline double noise_amplitude_stratonovich(double u, double w, double r, double mu, double kT, const double *params, const double *held)
+{
+  (void) params;
+  (void) w;
+  (void) r;
+  (void) mu;
+  (void) kT;
+  if (held[4] > u) {
+    const double cse0 = held[1]*(held[0] + fricgen_powi(u, 2));
+    const double cse1 = std::exp(cse0);
+    return cse1*held[3] + held[2]*((cse0) < -0.6931471805599453 ? (cse1) - 1.0 : std::expm1(cse0));
   }
-  const double cse0 = (1.0/std::sqrt(kT*mu));
-  return 1.772453850905516*cse0*kappa_f*w*fricgen_erfcx(cse0*u);
+  return held[6]*fricgen_erfcx(held[5]*u);
 }
 
 // D(u) = Piecewise((gamma_f, u < kappa_f*w/gamma_f), (kappa_f*w/u, True)), the hk calculus: D = f/u as nu = 0.
-inline double noise_amplitude_hk(double u, double w, double r, double mu, double kT, const double *params)
+// Its parts free of u (2) are held once per pair (hold_noise_amplitude_hk).
+inline void hold_noise_amplitude_hk(double *held, double w, double r, double mu, double kT, const double *params)
 {
   const double gamma_f = params[0];
   const double kappa_f = params[1];
   (void) r;
   (void) mu;
   (void) kT;
-  if (u < kappa_f*w/gamma_f) {
-    return gamma_f;
-  }
-  return kappa_f*w/u;
+  const double pair0 = kappa_f*w;
+  held[0] = pair0/gamma_f;
+  held[1] = pair0;
 }
-
-// df/du = Piecewise((gamma_f, gamma_f*u <= kappa_f*w), (0, True)), the slope of f in u (the Itô drift of the HK calculus needs it, D' = (u f' - f)/u**2).
-inline double friction_slope(double u, double w, double r, const double *params)
+inline double noise_amplitude_hk(double u, double w, double r, double mu, double kT, const double *params, const double *held)
 {
   const double gamma_f = params[0];
-  const double kappa_f = params[1];
+  (void) w;
   (void) r;
-  if (gamma_f*u <= kappa_f*w) {
+  (void) mu;
+  (void) kT;
+  if (held[0] > u) {
     return gamma_f;
   }
-  return 0.0;
+  return held[1]/u;
 }
 
-// D of the calculus with index c (CALCULI).
-inline double noise_amplitude(int c, double u, double w, double r, double mu, double kT, const double *params)
+// What a pair holds (the parts free of u of its kernels): f/u's, then df/du's (HK), then D's of the calculus.
+const int SLOPE_AT = 1, AMPLITUDE_AT = 2, HELD = 9;
+
+// The held parts of a pair (w, r, mu) for the calculus with index c (CALCULI).
+inline void hold(int c, double *held, double w, double r, double mu, double kT, const double *params)
 {
-  if (c == 0) return noise_amplitude_ito(u, w, r, mu, kT, params);
-  if (c == 1) return noise_amplitude_stratonovich(u, w, r, mu, kT, params);
-  if (c == 2) return noise_amplitude_hk(u, w, r, mu, kT, params);
+  hold_friction_over_u(held, w, r, params);
+  if (c == 2) hold_friction_slope(held + SLOPE_AT, w, r, params);
+  if (c == 0) hold_noise_amplitude_ito(held + AMPLITUDE_AT, w, r, mu, kT, params);
+  if (c == 1) hold_noise_amplitude_stratonovich(held + AMPLITUDE_AT, w, r, mu, kT, params);
+  if (c == 2) hold_noise_amplitude_hk(held + AMPLITUDE_AT, w, r, mu, kT, params);
+}
+
+// D of the calculus with index c (CALCULI), from the pair's held parts.
+inline double noise_amplitude(int c, double u, double w, double r, double mu, double kT, const double *params, const double *held)
+{
+  if (c == 0) return noise_amplitude_ito(u, w, r, mu, kT, params, held + AMPLITUDE_AT);
+  if (c == 1) return noise_amplitude_stratonovich(u, w, r, mu, kT, params, held + AMPLITUDE_AT);
+  if (c == 2) return noise_amplitude_hk(u, w, r, mu, kT, params, held + AMPLITUDE_AT);
   return NAN;
 }
 
@@ -351,22 +427,25 @@ struct ModeStep {
 
 // The proposal from the mode x (contact_step.mode_step): (f/u, m, s2, g), y = x + (e^(g W) - 1)/g,
 // W = m + sqrt(s2) (xi1 + i xi2), g the conjugate of grad ln sqrt(D).
-inline ModeStep mode_step(Cx x, double w, double r, double mu, double kT, double dt, const double *params, int comps, int calculus)
+// The pair's parts of the law free of u are in held (hold).
+inline ModeStep mode_step(Cx x, double w, double r, double mu, double kT, double dt, const double *params, int comps, int calculus,
+                          const double *held)
 {
-  const double u = comps == 1 ? std::fabs(x.re) : std::sqrt(x.re * x.re + x.im * x.im);
-  const double ratio = friction_over_u(u, w, r, params);
-  const double amplitude = noise_amplitude(calculus, u, w, r, mu, kT, params);
   const double THETA = THETAS[calculus];
+  const double inv_mu = 1.0 / mu, inv_spread = 1.0 / ((1.0 - THETA) * mu * kT);    // divisions off the chain from u
+  const double u = comps == 1 ? std::fabs(x.re) : std::sqrt(x.re * x.re + x.im * x.im);
+  const double ratio = friction_over_u(u, w, r, params, held);
+  const double amplitude = noise_amplitude(calculus, u, w, r, mu, kT, params, held);
   double slope_over_u;
   if (THETA == 1.0)    // D'/u with D = f/u
-    slope_over_u = u > 0.0 ? (friction_slope(u, w, r, params) - ratio) / (u * u) : 0.0;
+    slope_over_u = u > 0.0 ? (friction_slope(u, w, r, params, held + SLOPE_AT) - ratio) / (u * u) : 0.0;
   else
-    slope_over_u = (amplitude - ratio) / ((1.0 - THETA) * mu * kT);
-  const double rate = mu * amplitude;
+    slope_over_u = (amplitude - ratio) * inv_spread;
+  const double rate = mu * amplitude, inv_amplitude = 1.0 / amplitude;
   const double decay = std::expm1(-rate * dt);
-  const double span = rate > 0.0 ? -decay / rate : dt;
+  const double span = rate > 0.0 ? -decay * inv_amplitude * inv_mu : dt;
   const double s2 = -mu * kT * decay * (2.0 + decay);
-  const Cx g = real(amplitude > 0.0 ? 0.5 * slope_over_u / amplitude : 0.0) * Cx{x.re, -x.im};
+  const Cx g = real(amplitude > 0.0 ? 0.5 * slope_over_u * inv_amplitude : 0.0) * Cx{x.re, -x.im};
   Cx m = real(-mu * ratio + THETA * mu * mu * kT * slope_over_u) * x * real(span);
   if (comps == 1) m = m - real(0.5) * g * real(s2);
   return {ratio, m, s2, g};
@@ -377,12 +456,14 @@ inline double log_proposal(double xi2, Cx g_w, int comps)
   return -0.5 * xi2 - comps * g_w.re;
 }
 
-// A pair's mode as its move reads it: x, the law's w and r, the mode's mobility mu, its components and noise key.
+// A pair's mode as its move reads it: x, the law's w and r, the mode's mobility mu, its components, noise key and
+// the law's parts free of u (hold).
 struct Move {
   Cx x;
   double w, r, mu;
   int comps;
   uint64_t key;
+  double held[HELD];
 };
 
 // Pairs of one colour share no atom: the fix moves up to BATCH of them together, one stage after the other,
@@ -397,7 +478,7 @@ inline void move_batch(const Move *ms, int count, double kT, double dt, const do
   ModeStep a[BATCH], b[BATCH];
   Cx xi[BATCH], g_w[BATCH];
   bool open[BATCH];    // a proposal y awaits its acceptance
-  for (int q = 0; q < count; q++) a[q] = mode_step(ms[q].x, ms[q].w, ms[q].r, ms[q].mu, kT, dt, params, ms[q].comps, calculus);
+  for (int q = 0; q < count; q++) a[q] = mode_step(ms[q].x, ms[q].w, ms[q].r, ms[q].mu, kT, dt, params, ms[q].comps, calculus, ms[q].held);
   for (int q = 0; q < count; q++) {
     const Move &m = ms[q];
     y[q] = m.x;
@@ -415,7 +496,7 @@ inline void move_batch(const Move *ms, int count, double kT, double dt, const do
     open[q] = true;
   }
   for (int q = 0; q < count; q++)
-    if (open[q]) b[q] = mode_step(y[q], ms[q].w, ms[q].r, ms[q].mu, kT, dt, params, ms[q].comps, calculus);
+    if (open[q]) b[q] = mode_step(y[q], ms[q].w, ms[q].r, ms[q].mu, kT, dt, params, ms[q].comps, calculus, ms[q].held);
   for (int q = 0; q < count; q++) {
     if (!open[q]) continue;
     const Cx x = ms[q].x, yq = y[q];
@@ -429,7 +510,13 @@ inline void move_batch(const Move *ms, int count, double kT, double dt, const do
     const double xi2_back = (shift.re * shift.re + shift.im * shift.im) / b[q].s2;
     log_alpha += log_proposal(xi2_back, b[q].g * back, comps) - log_proposal(xi[q].re * xi[q].re + xi[q].im * xi[q].im, g_w[q], comps);
     log_alpha += 0.5 * comps * std::log(a[q].s2 / b[q].s2);
-    if (log_alpha >= 0.0 || uniform(ms[q].key, 2) < std::exp(log_alpha)) y[q] = yq;
+    // accepted if U < e^(log alpha); e^a >= 1 + a, so U < 1 + a decides most without the exp
+    if (log_alpha >= 0.0) {
+      y[q] = yq;
+      continue;
+    }
+    const double chance = uniform(ms[q].key, 2);
+    if (chance < 1.0 + log_alpha || chance < std::exp(log_alpha)) y[q] = yq;
   }
 }
 
@@ -518,6 +605,7 @@ FixFricgenCoulombNewton::FixFricgenCoulombNewton(LAMMPS *lmp, int narg, char **a
   comm_forward = 6;
   comm_reverse = 7;
   reach = 0.0;
+  contacts = 0;
   built = -1;
 }
 
@@ -620,7 +708,14 @@ void FixFricgenCoulombNewton::step_batch(const Pair *ps, int count, uint64_t key
     tangents(n, three, c.e1, c.e2);
     const double *e1 = c.e1, *e2 = c.e2;
     const Cx xm = {ux * e1[0] + uy * e1[1] + uz * e1[2], ux * e2[0] + uy * e2[1] + uz * e2[2]};
-    ms[q] = {xm, w, r, mu, comps, pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1)};
+    Move &m = ms[q];    // field by field: held is written by hold, not zeroed first
+    m.x = xm;
+    m.w = w;
+    m.r = r;
+    m.mu = mu;
+    m.comps = comps;
+    m.key = pair_key(key, static_cast<uint64_t>(p.lo) - 1, static_cast<uint64_t>(p.hi) - 1);
+    hold(calculus, m.held, w, r, mu, kT, params);
   }
   move_batch(ms, count, kT, update->dt, params, calculus, noise_on, ys);
   double **omega = atom->omega;
@@ -695,6 +790,7 @@ void FixFricgenCoulombNewton::collect_candidates()
   // by lower ID (counting sort), then each atom's partners by higher ID (a handful: insertion sort)
   for (size_t o = 0; o < order.size(); o++) counts[o + 1] += counts[o];
   candidates.resize(scratch.size());
+  pairs.resize(candidates.size());    // room for every candidate: a step writes its contacts first
   for (const Pair &p : scratch) candidates[counts[place[p.i]]++] = p;
   for (size_t o = 0, first = 0; o < order.size(); first = counts[o++])
     for (size_t q = first + 1; q < static_cast<size_t>(counts[o]); q++) {
@@ -768,32 +864,31 @@ void FixFricgenCoulombNewton::end_of_step()
     }
   // the pairs in contact in ID order, each in the phase of the halves that hold its owned atom
   // (each candidate is written and the count moves on for a contact: no branch to mispredict)
-  pairs.resize(candidates.size());
-  size_t kept = 0;
+  contacts = 0;
   for (const Pair &candidate : candidates) {
     const int i = candidate.xi, j = candidate.xj;
     const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
     const double range = WCA_RANGE * (radius[i] + radius[j]);
-    pairs[kept] = candidate;
-    kept += dx * dx + dy * dy + dz * dz < range * range;
+    pairs[contacts] = candidate;
+    contacts += dx * dx + dy * dy + dz * dz < range * range;
   }
-  pairs.resize(kept);
   int most = 0;
-  for (Pair &p : pairs) {
+  for (size_t q = 0; q < contacts; q++) {
+    Pair &p = pairs[q];
     for (int d = 0; d < 3; d++)
       if (split[d] && x[p.i][d] >= 0.5 * (domain->sublo[d] + domain->subhi[d])) p.phase += split[d];
     most = std::max(most, std::max(++degree[p.i], ++degree[p.c]));
   }
-  for (const Pair &p : pairs) degree[p.i] = degree[p.c] = 0;
-  if (phases > 1) sort_by(0, pairs.size(), phases, [](const Pair &p) { return p.phase; });
+  for (size_t q = 0; q < contacts; q++) degree[pairs[q].i] = degree[pairs[q].c] = 0;
+  if (phases > 1) sort_by(0, contacts, phases, [](const Pair &p) { return p.phase; });
   // greedy edge colouring in pair order within each phase (contact_step.colour_classes): a pair takes the
   // lowest colour free at both atoms; fewer than 2 most colours are needed
   const int words = (2 * most) / 64 + 1;
   if (used.size() < degree.size() * words) used.assign(degree.size() * words, 0);
   size_t first = 0;
-  while (first < pairs.size()) {
+  while (first < contacts) {
     size_t last = first;
-    while (last < pairs.size() && pairs[last].phase == pairs[first].phase) last++;
+    while (last < contacts && pairs[last].phase == pairs[first].phase) last++;
     for (size_t q = first; q < last; q++) {
       Pair &p = pairs[q];
       uint64_t *ui = &used[static_cast<size_t>(p.i) * words], *uc = &used[static_cast<size_t>(p.c) * words];
@@ -814,9 +909,9 @@ void FixFricgenCoulombNewton::end_of_step()
   // the phases one after another; the pairs of a phase in colour order, up to BATCH of one colour at a time
   size_t q = 0;
   for (int phase = 0; phase < phases; phase++) {
-    while (q < pairs.size() && pairs[q].phase == phase) {
+    while (q < contacts && pairs[q].phase == phase) {
       size_t end = q + 1;
-      while (end < pairs.size() && end - q < BATCH && pairs[end].phase == phase && pairs[end].colour == pairs[q].colour) end++;
+      while (end < contacts && end - q < BATCH && pairs[end].phase == phase && pairs[end].colour == pairs[q].colour) end++;
       step_batch(&pairs[q], static_cast<int>(end - q), key);
       q = end;
     }

@@ -45,7 +45,8 @@ class FixFricgenStribeck : public Fix {
   double params[5];
   class NeighList *list;
   bigint built;                          // neighbor->ncalls when the candidates were collected
-  std::vector<Pair> candidates, pairs;    // the listed pairs in ID order; this step's contacts
+  std::vector<Pair> candidates, pairs;    // the listed pairs in ID order; this step's contacts (its first contacts)
+  size_t contacts;
   std::vector<Pair> scratch;
   std::vector<std::pair<tagint, int>> order;    // (ID, index) of the owned atoms, by ID
   std::vector<int> place, degree, counts;       // place: an owned atom's position in order
