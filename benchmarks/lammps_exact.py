@@ -2,7 +2,7 @@
 style fricgen/coulomb_newton, in LAMMPS, on the same cores, measured alternately in one run.
 
 System: generated/lammps/coulomb_newton/in.coulomb_newton_2d_exact (2-D, N = 10 000 discs at area
-fraction 0.6; with --dimension 3 in.coulomb_newton_3d_exact, N = 22^3 = 10 648 spheres; dt = 5e-3, kT = 1, no
+fraction 0.6; with --dimension 3 in.coulomb_newton_3d_exact, N = 22^3 - 648 = 10 000 spheres; dt = 5e-3, kT = 1, no
 solvent: the contacts are the thermostat): WCA from lj/cut and the
 fix, against the same input with the pair style fricgen/coulomb_newton (WCA + the explicit kick) in
 place of both. Rates are particle-steps per second of the timed run (after a 200-step warm-up, from
@@ -22,7 +22,7 @@ import statistics
 import tempfile
 from pathlib import Path
 
-from lammps_plugin import built_plugin, lammps_rate
+from lammps_plugin import LOOP, built_plugin, lammps_output, loop_rate
 
 FIX = "fix             contact all fricgen/exact/coulomb_newton ${kT} ${seed} gamma_f 6.0 kappa_f 5.0 solvent ${gamma} ${gamma_r}\n"
 
@@ -98,9 +98,10 @@ def main() -> None:
     for _ in range(options.repeats):
         for ranks in (1, 2):
             for name, script in scripts.items():
-                rates.setdefault((name, ranks), []).append(lammps_rate(lammps, script, ranks, options.steps, extra, work))
+                output = lammps_output(lammps, script, ranks, options.steps, extra, work)
+                rates.setdefault((name, ranks), []).append(loop_rate(output))
+                n = int(LOOP.findall(output)[-1][3])  # the atoms LAMMPS ran (the 3-D template deletes some of the lattice's)
     median = {key: statistics.median(values) for key, values in rates.items()}
-    n = cells**options.dimension
     runs = f"{options.steps} timed steps, medians of {options.repeats} alternating repeats"
     print(f"{options.dimension}-D, N = {n}, dt = 5e-3, no solvent, {runs}:")
     for (name, ranks), values in sorted(rates.items()):
