@@ -57,7 +57,7 @@ def engine_steps(law: str, dim: int, noise: bool, snapshots, box_length: float =
         motion = Motion(state.position, state.velocity, state.omega, state.orientation)
         key = np.uint64(stream_key(SEED, s, CONTACT))
         owner = np.repeat(np.arange(n), np.diff(lists[0]))  # the particle of each slot (i of the pair i < k)
-        groups = [touching] if phases is None else [touching & (phases(inside)[owner] == p) for p in (0, 1)]
+        groups = [touching] if phases is None else [touching & (phases(inside)[owner] == p) for p in range(4)]
         for part in groups:
             engine.contact_step(motion, bodies, dyn, simulation.couplings, (contact, slope, weight), lists, part, key)
         out[s + 1] = (state.velocity.copy(), state.omega.copy())
@@ -71,6 +71,15 @@ def split_spheres(dim: int):
     position, velocity, omega = spheres(dim)
     position[2, 0], position[8, 0] = 5.7, 11.32
     position[4:7, 0] = 3.2, 2.18, 2.7
+    return position, velocity, omega
+
+
+def corner_spheres(dim: int):
+    """split_spheres(dim) for 2 x 2 ranks (processors 2 2 1, sub-domains 6 x 6) with the pair of atoms 3, 4 across the
+    corner (6, 6): atom 3 on the upper right rank, atom 4 on the lower left, below it, so that with newton on the rank of
+    atom 4 lists the pair (its ghost partner lies above it) and sends it through a third rank to atom 3's owner."""
+    position, velocity, omega = split_spheres(dim)
+    position[2, :2], position[3, :2] = (6.3, 6.4), (5.7, 5.7)
     return position, velocity, omega
 
 
@@ -89,11 +98,11 @@ def _dynamics(plugin, law: str, dim: int, noise: bool, calculus: str = "ito") ->
 
 def lammps_run(lammps, plugin, folder, law: str, dim: int, noise: bool, ranks: int = 1, newton: str = "on", runs: str = "", calculus="ito"):
     """STEPS steps dumped every step (or the input lines ``runs`` after the dump) from the nine spheres."""
-    box, coordinates = (BOX, spheres(dim)) if ranks == 1 else (12.0, split_spheres(dim))
+    box, coordinates = (BOX, spheres(dim)) if ranks == 1 else (12.0, split_spheres(dim) if ranks == 2 else corner_spheres(dim))
     data_file(folder / "data.spheres", box, dim, *coordinates)
     script = (
         f"units lj\ndimension {dim}\natom_style sphere\natom_modify map array\nboundary p p p\nnewton {newton}\n"
-        + ("processors 2 1 1\n" if ranks == 2 else "")
+        + {1: "", 2: "processors 2 1 1\n", 4: "processors 2 2 1\n"}[ranks]
         + "read_data data.spheres\nset type 1 mass 1.0\n"
         + _dynamics(plugin, law, dim, noise, calculus)
         + dump_lines("dump.steps")
@@ -169,6 +178,19 @@ def test_two_ranks_are_the_engines_step_phase_by_phase(lammps, plugin, tmp_path,
 
     assert deviation(snapshots, engine_steps("coulomb_newton", dim, True, snapshots, 12.0, phases)) < 1e-12
     assert deviation(snapshots, engine_steps("coulomb_newton", dim, True, snapshots, 12.0)) > 1e-6
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_four_ranks_are_the_engines_step_phase_by_phase(lammps, plugin, tmp_path, dim):
+    """processors 2 2 1 in a box of 12 (4 ranks on 2 cores: oversubscribed, for correctness): the phase of an atom is
+    (x mod 6 >= 3) + 2 (y mod 6 >= 3); the pair across the corner reaches the rank of its lower ID through a third."""
+    snapshots = lammps_run(lammps, plugin("coulomb_newton"), tmp_path, "coulomb_newton", dim, True, ranks=4)
+    assert moved(snapshots) > 0.05
+
+    def phases(position):
+        return (np.mod(position[:, 0], 6.0) >= 3.0).astype(int) + 2 * (np.mod(position[:, 1], 6.0) >= 3.0).astype(int)
+
+    assert deviation(snapshots, engine_steps("coulomb_newton", dim, True, snapshots, 12.0, phases)) < 1e-12
 
 
 def _lattice_script(plugin, law: str = "coulomb_newton", pair: str = "", box: str = "", nve: bool = True, atom_map: bool = True) -> str:

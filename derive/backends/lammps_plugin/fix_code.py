@@ -25,9 +25,10 @@ one canonical copy (atom->map). After a phase, the touched ghost copies' velocit
 copy that was not touched carries none) and the owners' to every ghost (forward communication).
 On one rank the fix therefore reproduces the engine's step to round-off (a pair across the periodic
 boundary takes its vector from a ghost image); on several, the engine's step with the touching pairs split
-by phase. The candidate pairs are collected and ID-sorted once per neighbour-list build, from a full list
-of the fix's own on several ranks, from the pair style's half list (shared, built once) on one; a step
-filters the contacts from them and sorts phases and colours by counting.
+by phase. The candidate pairs are collected and ID-sorted once per neighbour-list build from the pair style's
+half list (shared, built once; with newton on a pair listed only on the rank of its higher-ID atom is sent to
+the lower's owner by reverse communication); a step filters the contacts from them and sorts phases and
+colours by counting.
 """
 
 from __future__ import annotations
@@ -262,9 +263,15 @@ class ${fix_cls} : public Fix {
   std::vector<int> place, degree, counts;       // place: an owned atom's position in order
   std::vector<uint64_t> used;
   std::vector<char> touched;
+  // collect_candidates on several ranks: pairs (ghost copy of the lower-ID atom, higher ID) to send to the lower's
+  // owner, the next of each ghost's to pack, and the pairs received (owned lower-ID atom, higher ID)
+  std::vector<std::pair<int, tagint>> sent, received;
+  std::vector<int> next_sent, end_sent;
+  bool sending;    // the reverse communication carries pairs, not velocities
   void check_domain();
   void solvent_step();
   void collect_candidates();
+  void send_pairs();
   template <typename Key> void sort_by(size_t, size_t, int, Key);
   void step_batch(const Pair *, int, uint64_t);
 };

@@ -105,7 +105,8 @@ ${fix_cls}::${fix_cls}(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg),
     params[k] = value;
   }
   comm_forward = 6;
-  comm_reverse = 7;
+  comm_reverse = 7;    // a ghost copy's touched flag, velocity and spin; or a count and up to 6 IDs (send_pairs)
+  sending = false;
   reach = 0.0;
   contacts = 0;
   built = -1;
@@ -135,9 +136,9 @@ ${fix_dimension_check}  if (!atom->radius_flag || !atom->rmass_flag || !atom->om
   if (force->pair_match("fricgen/${law}", 1))
     error->all(FLERR, "fix fricgen/exact/${law} and pair_style fricgen/${law} would apply the friction of ${law} twice: "
                "take lj/cut for WCA with the fix, or the pair style alone");
-  // one rank: the pair style's half list (the same request: LAMMPS shares it, no second build); several: a full
-  // list, so that the rank owning a pair's lower-ID atom sees the pair
-  neighbor->add_request(this, comm->nprocs == 1 ? NeighConst::REQ_DEFAULT : NeighConst::REQ_FULL);
+  // the pair style's half list (the same request: LAMMPS shares it, no second build); a pair that only the rank of
+  // its higher-ID atom lists is sent to the rank of the lower (collect_candidates)
+  neighbor->add_request(this, NeighConst::REQ_DEFAULT);
 }
 
 void ${fix_cls}::init_list(int, NeighList *ptr)
@@ -175,9 +176,10 @@ void ${fix_cls}::check_domain()
 
 ${pair_step}
 // On each neighbour-list build (atoms are renumbered only then): every listed pair once, as (lower ID, higher ID),
-// in the engine's pair order (IDs sorted), so that a step only filters the contacts from it. A full list (several
-// ranks) gives each pair from its owned atom of lower ID; the half list of one rank from either atom, and a pair
-// across a periodic boundary with newton off from both (kept from the lower ID).
+// in the engine's pair order (IDs sorted), so that a step only filters the contacts from it; each pair on the rank
+// owning its lower-ID atom. The half list gives a pair from either atom; a pair between an owned atom and a ghost
+// with newton off from both sides (kept from the lower ID), with newton on from one: where that is the rank of the
+// higher ID, the pair is sent to the lower's owner (send_pairs).
 void ${fix_cls}::collect_candidates()
 {
   const tagint *tag = atom->tag;
@@ -185,10 +187,10 @@ void ${fix_cls}::collect_candidates()
   const int nlocal = atom->nlocal;
   const int *ilist = list->ilist, *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
-  const bool full = comm->nprocs > 1, twice = !full && !force->newton_pair;
+  const bool several = comm->nprocs > 1, twice = !force->newton_pair;
   // the owned atoms by ID: on one rank every ID through the atom map, on several a sort of the owned atoms
   order.clear();
-  if (full) {
+  if (several) {
     for (int ii = 0; ii < list->inum; ii++) {
       const int i = ilist[ii];
       if (mask[i] & groupbit) order.push_back({tag[i], i});
@@ -204,6 +206,8 @@ void ${fix_cls}::collect_candidates()
   for (size_t o = 0; o < order.size(); o++) place[order[o].second] = static_cast<int>(o);
   // the pairs, counted by the place of their lower-ID atom
   scratch.clear();
+  sent.clear();
+  received.clear();
   counts.assign(order.size() + 1, 0);
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = ilist[ii];
@@ -212,11 +216,21 @@ void ${fix_cls}::collect_candidates()
       const int j = firstneigh[i][jj] & NEIGHMASK;
       if (tag[j] == tag[i] || !(mask[j] & groupbit)) continue;
       const bool up = tag[j] > tag[i];
-      if (!up && (full || (twice && j >= nlocal))) continue;
+      if (!up && j >= nlocal && twice) continue;    // listed from the lower ID as well
+      if (!up && atom->map(tag[j]) >= nlocal) {     // the lower ID is owned by another rank: it gets the pair
+        sent.push_back({j, tag[i]});
+        continue;
+      }
       const Pair p = up ? Pair{tag[i], tag[j], i, atom->map(tag[j]), i, j, 0, 0} : Pair{tag[j], tag[i], atom->map(tag[j]), i, j, i, 0, 0};
       scratch.push_back(p);
       counts[place[p.i] + 1]++;
     }
+  }
+  if (several) send_pairs();
+  for (const std::pair<int, tagint> &got : received) {    // (owned lower-ID atom, the higher ID)
+    const int i = got.first, c = atom->map(got.second);
+    scratch.push_back(Pair{tag[i], got.second, i, c, i, domain->closest_image(i, c), 0, 0});
+    counts[place[i] + 1]++;
   }
   // by lower ID (counting sort), then each atom's partners by higher ID (a handful: insertion sort)
   for (size_t o = 0; o < order.size(); o++) counts[o + 1] += counts[o];

@@ -764,7 +764,8 @@ FixFricgenSmoothCoulomb::FixFricgenSmoothCoulomb(LAMMPS *lmp, int narg, char **a
     params[k] = value;
   }
   comm_forward = 6;
-  comm_reverse = 7;
+  comm_reverse = 7;    // a ghost copy's touched flag, velocity and spin; or a count and up to 6 IDs (send_pairs)
+  sending = false;
   reach = 0.0;
   contacts = 0;
   built = -1;
@@ -794,9 +795,9 @@ void FixFricgenSmoothCoulomb::init()
   if (force->pair_match("fricgen/smooth_coulomb", 1))
     error->all(FLERR, "fix fricgen/exact/smooth_coulomb and pair_style fricgen/smooth_coulomb would apply the friction of smooth_coulomb twice: "
                "take lj/cut for WCA with the fix, or the pair style alone");
-  // one rank: the pair style's half list (the same request: LAMMPS shares it, no second build); several: a full
-  // list, so that the rank owning a pair's lower-ID atom sees the pair
-  neighbor->add_request(this, comm->nprocs == 1 ? NeighConst::REQ_DEFAULT : NeighConst::REQ_FULL);
+  // the pair style's half list (the same request: LAMMPS shares it, no second build); a pair that only the rank of
+  // its higher-ID atom lists is sent to the rank of the lower (collect_candidates)
+  neighbor->add_request(this, NeighConst::REQ_DEFAULT);
 }
 
 void FixFricgenSmoothCoulomb::init_list(int, NeighList *ptr)
@@ -905,9 +906,10 @@ void FixFricgenSmoothCoulomb::step_batch(const Pair *ps, int count, uint64_t key
 }
 
 // On each neighbour-list build (atoms are renumbered only then): every listed pair once, as (lower ID, higher ID),
-// in the engine's pair order (IDs sorted), so that a step only filters the contacts from it. A full list (several
-// ranks) gives each pair from its owned atom of lower ID; the half list of one rank from either atom, and a pair
-// across a periodic boundary with newton off from both (kept from the lower ID).
+// in the engine's pair order (IDs sorted), so that a step only filters the contacts from it; each pair on the rank
+// owning its lower-ID atom. The half list gives a pair from either atom; a pair between an owned atom and a ghost
+// with newton off from both sides (kept from the lower ID), with newton on from one: where that is the rank of the
+// higher ID, the pair is sent to the lower's owner (send_pairs).
 void FixFricgenSmoothCoulomb::collect_candidates()
 {
   const tagint *tag = atom->tag;
@@ -915,10 +917,10 @@ void FixFricgenSmoothCoulomb::collect_candidates()
   const int nlocal = atom->nlocal;
   const int *ilist = list->ilist, *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
-  const bool full = comm->nprocs > 1, twice = !full && !force->newton_pair;
+  const bool several = comm->nprocs > 1, twice = !force->newton_pair;
   // the owned atoms by ID: on one rank every ID through the atom map, on several a sort of the owned atoms
   order.clear();
-  if (full) {
+  if (several) {
     for (int ii = 0; ii < list->inum; ii++) {
       const int i = ilist[ii];
       if (mask[i] & groupbit) order.push_back({tag[i], i});
@@ -934,6 +936,8 @@ void FixFricgenSmoothCoulomb::collect_candidates()
   for (size_t o = 0; o < order.size(); o++) place[order[o].second] = static_cast<int>(o);
   // the pairs, counted by the place of their lower-ID atom
   scratch.clear();
+  sent.clear();
+  received.clear();
   counts.assign(order.size() + 1, 0);
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = ilist[ii];
@@ -942,11 +946,21 @@ void FixFricgenSmoothCoulomb::collect_candidates()
       const int j = firstneigh[i][jj] & NEIGHMASK;
       if (tag[j] == tag[i] || !(mask[j] & groupbit)) continue;
       const bool up = tag[j] > tag[i];
-      if (!up && (full || (twice && j >= nlocal))) continue;
+      if (!up && j >= nlocal && twice) continue;    // listed from the lower ID as well
+      if (!up && atom->map(tag[j]) >= nlocal) {     // the lower ID is owned by another rank: it gets the pair
+        sent.push_back({j, tag[i]});
+        continue;
+      }
       const Pair p = up ? Pair{tag[i], tag[j], i, atom->map(tag[j]), i, j, 0, 0} : Pair{tag[j], tag[i], atom->map(tag[j]), i, j, i, 0, 0};
       scratch.push_back(p);
       counts[place[p.i] + 1]++;
     }
+  }
+  if (several) send_pairs();
+  for (const std::pair<int, tagint> &got : received) {    // (owned lower-ID atom, the higher ID)
+    const int i = got.first, c = atom->map(got.second);
+    scratch.push_back(Pair{tag[i], got.second, i, c, i, domain->closest_image(i, c), 0, 0});
+    counts[place[i] + 1]++;
   }
   // by lower ID (counting sort), then each atom's partners by higher ID (a handful: insertion sort)
   for (size_t o = 0; o < order.size(); o++) counts[o + 1] += counts[o];
@@ -1105,8 +1119,47 @@ void FixFricgenSmoothCoulomb::unpack_forward_comm(int n, int first, double *buf)
   }
 }
 
+// The pairs of sent to the owners of their ghost copies, 6 IDs per copy and round, until no rank has one left;
+// a pair that arrives at a ghost copy (a corner, whose owner is reached through another rank) goes on next round.
+// received: the pairs that arrived at owned atoms.
+void FixFricgenSmoothCoulomb::send_pairs()
+{
+  const int nlocal = atom->nlocal, nall = atom->nlocal + atom->nghost;
+  std::vector<std::pair<int, tagint>> arrived, rest;
+  while (true) {
+    int left = sent.empty() ? 0 : 1, any;
+    MPI_Allreduce(&left, &any, 1, MPI_INT, MPI_MAX, world);
+    if (!any) break;
+    std::sort(sent.begin(), sent.end());
+    next_sent.assign(nall, 0);
+    end_sent.assign(nall, 0);
+    for (size_t s = sent.size(); s-- > 0;) next_sent[sent[s].first] = static_cast<int>(s);
+    for (size_t s = 0; s < sent.size(); s++) end_sent[sent[s].first] = static_cast<int>(s) + 1;
+    received.clear();
+    sending = true;
+    comm->reverse_comm(this);
+    sending = false;
+    rest.clear();
+    for (int g = nlocal; g < nall; g++)    // what did not fit this round
+      for (int s = next_sent[g]; s < end_sent[g]; s++) rest.push_back(sent[s]);
+    for (const std::pair<int, tagint> &got : received) (got.first < nlocal ? arrived : rest).push_back(got);
+    sent.swap(rest);
+  }
+  received.swap(arrived);
+}
+
 int FixFricgenSmoothCoulomb::pack_reverse_comm(int n, int first, double *buf)
 {
+  if (sending) {
+    int m = 0;
+    for (int g = first; g < first + n; g++, m += 7) {
+      int k = 0;
+      for (; k < 6 && next_sent[g] < end_sent[g]; k++) buf[m + 1 + k] = static_cast<double>(sent[next_sent[g]++].second);
+      buf[m] = k;
+      for (int rest = k; rest < 6; rest++) buf[m + 1 + rest] = 0.0;
+    }
+    return m;
+  }
   double **v = atom->v, **omega = atom->omega;
   int m = 0;
   for (int i = first; i < first + n; i++) {
@@ -1120,6 +1173,11 @@ int FixFricgenSmoothCoulomb::pack_reverse_comm(int n, int first, double *buf)
 // A touched copy's velocity and spin replace the receiver's (no other rank touched that atom in the phase).
 void FixFricgenSmoothCoulomb::unpack_reverse_comm(int n, int *receive, double *buf)
 {
+  if (sending) {
+    for (int s = 0, m = 0; s < n; s++, m += 7)
+      for (int k = 0; k < static_cast<int>(buf[m]); k++) received.push_back({receive[s], static_cast<tagint>(buf[m + 1 + k])});
+    return;
+  }
   double **v = atom->v, **omega = atom->omega;
   int m = 0;
   for (int s = 0; s < n; s++, m += 7) {

@@ -52,9 +52,15 @@ class FixFricgenStribeck : public Fix {
   std::vector<int> place, degree, counts;       // place: an owned atom's position in order
   std::vector<uint64_t> used;
   std::vector<char> touched;
+  // collect_candidates on several ranks: pairs (ghost copy of the lower-ID atom, higher ID) to send to the lower's
+  // owner, the next of each ghost's to pack, and the pairs received (owned lower-ID atom, higher ID)
+  std::vector<std::pair<int, tagint>> sent, received;
+  std::vector<int> next_sent, end_sent;
+  bool sending;    // the reverse communication carries pairs, not velocities
   void check_domain();
   void solvent_step();
   void collect_candidates();
+  void send_pairs();
   template <typename Key> void sort_by(size_t, size_t, int, Key);
   void step_batch(const Pair *, int, uint64_t);
 };
