@@ -114,16 +114,22 @@ def kernel(name: str, args: str, expr: sp.Expr, doc: str, parameters: list[sp.Sy
     printer = CxxKernelPrinter()
     guard = zero_speed_guard(at_zero, printer, SYNTAX)  # at u <= 0, the limit u -> 0+ (zero_speed_limit)
     expr = fold_constants(stabilize(expr))
-    used = {x.name for x in expr.free_symbols}
+    unpack = unpacking({x.name for x in expr.free_symbols}, parameters, args, bool(guard), printer)
+    signature = f"inline double {name}({SIGNATURES[args]})"
+    lines = [comment(doc).rstrip("\n"), signature, "{", *unpack, *guard, *body(expr, printer, SYNTAX), "}"]
+    return "\n".join(lines) + "\n"
+
+
+def unpacking(used: set[str], parameters: list[sp.Symbol], args: str, guarded: bool, printer) -> list[str]:
+    """A kernel's first lines: the ``parameters`` it ``used`` read from ``params``, and (void) for each argument of
+    ``args`` it does not use (u is used by a zero-speed guard if ``guarded``)."""
     unpack = [f"{INDENT}const double {printer.doprint(p)} = params[{k}];" for k, p in enumerate(parameters) if p.name in used]
     if not used & {"params", *(p.name for p in parameters)}:
         unpack.append(f"{INDENT}(void) params;")
     for arg in ("u", "w", "r", "mu", "kT"):
-        if arg in args.split(", ") and arg not in used and not (arg == "u" and guard):
+        if arg in args.split(", ") and arg not in used and not (arg == "u" and guarded):
             unpack.append(f"{INDENT}(void) {arg};")
-    signature = f"inline double {name}({SIGNATURES[args]})"
-    lines = [comment(doc).rstrip("\n"), signature, "{", *unpack, *guard, *body(expr, printer, SYNTAX), "}"]
-    return "\n".join(lines) + "\n"
+    return unpack
 
 
 # --- a law's kernels ---------------------------------------------------------------------------------

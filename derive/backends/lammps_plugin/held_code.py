@@ -28,6 +28,7 @@ from .code import (
     law_kernels,
     ratio_formula,
     slope_formula,
+    unpacking,
 )
 from .fix_code import THETA
 
@@ -67,23 +68,26 @@ def held_kernel(formula: Formula, parameters: list[sp.Symbol]) -> tuple[str, int
     replacements, reduced = sp.cse(list(held), symbols=sp.numbered_symbols("pair"), optimizations="basic")
     hold = [f"{INDENT}const double {printer.doprint(s)} = {printer.doprint(v)};" for s, v in replacements]
     hold += [f"{INDENT}{printer.doprint(s)} = {printer.doprint(v)};" for s, v in zip(held.values(), reduced)]
-    texts = []
-    for function, uses, lines, arguments in (
-        (f"hold_{name}", sp.Tuple(*held), hold, args.removeprefix("u, ")),
-        (name, sp.Tuple(moving, at_zero if at_zero is not None else sp.S.Zero), [*guard, *body(moving, printer, SYNTAX)], args),
-    ):
-        used = {x.name for x in uses.free_symbols}
-        unpack = [f"{INDENT}const double {printer.doprint(p)} = params[{k}];" for k, p in enumerate(parameters) if p.name in used]
-        if not used & {p.name for p in parameters}:
-            unpack.append(f"{INDENT}(void) params;")
-        for arg in ("u", "w", "r", "mu", "kT"):
-            if arg in arguments.split(", ") and arg not in used and not (arg == "u" and guard):
-                unpack.append(f"{INDENT}(void) {arg};")
-        if not held:
-            unpack.append(f"{INDENT}(void) held;")
-        kind, held_arg = ("void", "double *held, ") if function != name else ("double", "")
-        own = f"{signature(arguments)}, const double *held" if function == name else f"{held_arg}{signature(arguments)}"
-        texts.append("\n".join([f"inline {kind} {function}({own})", "{", *unpack, *lines, "}"]))
+    limit = at_zero if at_zero is not None else sp.S.Zero
+    pair_args = args.removeprefix("u, ")
+    silent = [] if held else [f"{INDENT}(void) held;"]
+    hold_unpack = unpacking({x.name for x in sp.Tuple(*held).free_symbols}, parameters, pair_args, False, printer)
+    unpack = unpacking({x.name for x in sp.Tuple(moving, limit).free_symbols}, parameters, args, bool(guard), printer)
+    texts = [
+        f"inline void hold_{name}(double *held, {signature(pair_args)})",
+        "{",
+        *hold_unpack,
+        *silent,
+        *hold,
+        "}",
+        f"inline double {name}({signature(args)}, const double *held)",
+        "{",
+        *unpack,
+        *silent,
+        *guard,
+        *body(moving, printer, SYNTAX),
+        "}",
+    ]
     doc = comment(doc + f"\nIts parts free of u ({len(held)}) are held once per pair (hold_{name}).")
     return doc + "\n".join(texts) + "\n", len(held)
 
