@@ -112,3 +112,12 @@ warnings.filterwarnings("ignore", message="First-class function type feature is 
 #: but costs 5-8 times on a quiet machine with small systems; benchmarks/contention.py.)
 if hasattr(os, "sched_getaffinity"):
     os.environ.setdefault("NUMBA_NUM_THREADS", str(len(os.sched_getaffinity(0))))
+
+# Launch Numba's threading layer now, before any cached function is loaded. A function compiled with its
+# signature (compiled or loaded from the cache at import, as integrator.advance) links the parallel loops it calls;
+# if it was compiled while those came from the cache, its cached code needs the layer's symbols when it loads,
+# and without them LLVM aborts the process ("Symbol not found: allocate_sched"). That happens after the caches
+# were cleared (clear_stale_caches) and two processes started together, as the workers of a sweep do.
+import numba  # noqa: E402 (after the thread count and TBB above, which Numba reads when it starts)
+
+numba.get_num_threads()

@@ -49,3 +49,46 @@ def test_a_tree_that_cannot_be_written_is_left_alone(tmp_path):
     caches = _tree(tmp_path)
     (tmp_path / "__pycache__").write_text("a file where the stamp's folder would go")
     assert not clear_stale_caches(tmp_path, SOURCES) and all(c.exists() for c in caches)
+
+
+SCRATCH = """import fricgen.compiled  # first, as the engines do
+import numba
+import numpy as np
+from numba import types
+
+
+@numba.njit(parallel=True, cache=True)
+def fill(a):
+    for i in numba.prange(a.size):
+        a[i] = i
+
+
+@numba.njit(types.float64(types.int64), cache=True)  # compiled at import, as integrator.advance
+def total(n):
+    a = np.empty(n)
+    fill(a)
+    return a.sum()
+
+
+print(total(10))
+"""
+
+
+def test_a_caller_compiled_against_cached_parallel_loops_loads_from_the_cache(tmp_path):
+    """A function compiled with its signature while the parallel loop it calls came from the cache (what a process
+    does that starts beside another after clear_stale_caches) is cached with references to the threading layer;
+    fricgen.compiled launches the layer first, so loading it later does not abort LLVM."""
+    import subprocess
+    import sys
+
+    (tmp_path / "scratch.py").write_text(SCRATCH)
+
+    def run():
+        done = subprocess.run([sys.executable, "-c", "import scratch"], cwd=tmp_path, capture_output=True, text=True, timeout=300)
+        return done.returncode, (done.stdout + done.stderr)[-300:]
+
+    assert run() == (0, "45.0\n")  # both compiled and cached
+    for cache in (tmp_path / "__pycache__").glob("scratch.total-*"):
+        cache.unlink()
+    assert run() == (0, "45.0\n")  # total compiled again, fill from the cache
+    assert run() == (0, "45.0\n")  # total from the cache
