@@ -2,9 +2,10 @@
 
 Importing this module (the first line of :mod:`fricgen.kernels`, :mod:`fricgen.rng` and of the
 engines' packages, before they import Numba) puts TBB where Numba finds it, sets the default thread
-count and clears Numba's cached code of the compiled layers when their sources changed
-(:func:`clear_stale_caches`). ``import fricgen`` alone does none of this: the command line's help,
-the symbolic layer and the errors never touch Numba.
+count, clears Numba's cached code of the compiled layers when their sources changed
+(:func:`clear_stale_caches`) and then launches Numba's threading layer (before any cached function loads).
+``import fricgen`` alone does none of this: the command line's help, the symbolic layer and the errors never
+touch Numba.
 """
 
 import ctypes

@@ -4,6 +4,8 @@ Numba checks a cached function only against its own file, yet the cached code ho
 functions it calls; fricgen.compiled.clear_stale_caches closes that gap (README, Layout). Run here on a
 scratch tree, not on the package, whose caches the rest of the suite uses."""
 
+import subprocess
+import sys
 from pathlib import Path
 
 from fricgen.compiled import clear_stale_caches
@@ -78,9 +80,6 @@ def test_a_caller_compiled_against_cached_parallel_loops_loads_from_the_cache(tm
     """A function compiled with its signature while the parallel loop it calls came from the cache (what a process
     does that starts beside another after clear_stale_caches) is cached with references to the threading layer;
     fricgen.compiled launches the layer first, so loading it later does not abort LLVM."""
-    import subprocess
-    import sys
-
     (tmp_path / "scratch.py").write_text(SCRATCH)
 
     def run():

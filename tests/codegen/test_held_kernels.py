@@ -16,7 +16,7 @@ import pytest
 import sympy as sp
 
 from fricgen.derive.backends.lammps_plugin.code import amplitude_formula, ratio_formula, slope_formula
-from fricgen.derive.backends.lammps_plugin.held_code import fix_kernels, lift
+from fricgen.derive.backends.lammps_plugin.held_code import fix_kernels, free_of_u, lift
 from fricgen.derive.backends.printing import fold_constants, stabilize
 
 
@@ -27,10 +27,6 @@ def formulas(laws, models):
         for c in law.calculi:
             if models[name, c].closed_form:
                 yield name, amplitude_formula(models[name, c])
-
-
-def free_of_u(expr: sp.Basic) -> bool:
-    return not any(x.name == "u" for x in expr.free_symbols)
 
 
 def test_lift_gives_back_the_kernel_and_holds_every_part_free_of_u(laws, models):

@@ -33,16 +33,21 @@ from .code import (
 from .fix_code import THETA
 
 
+def free_of_u(expr: sp.Basic) -> bool:
+    """Whether ``expr`` does not depend on the speed u (by name: the printers' symbols carry no assumptions)."""
+    return not any(x.name == "u" for x in expr.free_symbols)
+
+
 def lift(expr: sp.Basic, held: dict[sp.Expr, sp.Symbol]) -> sp.Basic:
     """``expr`` with each largest numeric subexpression free of u (not a bare symbol or number) replaced by a
     symbol ``held[k]``; ``held`` maps the subexpressions to their symbols (extended here, shared ones once)."""
     if expr.is_Atom:
         return expr
-    if not any(x.name == "u" for x in expr.free_symbols):
+    if free_of_u(expr):
         return held.setdefault(expr, sp.Symbol(f"held[{len(held)}]")) if isinstance(expr, sp.Expr) else expr
     if isinstance(expr, (sp.Add, sp.Mul)):
-        free = [a for a in expr.args if not any(x.name == "u" for x in a.free_symbols)]
-        moving = [lift(a, held) for a in expr.args if any(x.name == "u" for x in a.free_symbols)]
+        free = [a for a in expr.args if free_of_u(a)]
+        moving = [lift(a, held) for a in expr.args if not free_of_u(a)]
         if free:
             free = [lift(expr.func(*free), held)]
         return expr.func(*free, *moving)
@@ -63,7 +68,9 @@ def held_kernel(formula: Formula, parameters: list[sp.Symbol]) -> tuple[str, int
     expr = fold_constants(stabilize(expr))
     if isinstance(expr, sp.Piecewise):  # exp and expm1 of one argument paired per branch, as body's CSE does
         expr = sp.Piecewise(*((share_exp(value), condition) for value, condition in expr.args))
-    moving = lift(share_exp(expr), held)
+    else:
+        expr = share_exp(expr)
+    moving = lift(expr, held)
     guard = zero_speed_guard(at_zero, printer, SYNTAX)
     replacements, reduced = sp.cse(list(held), symbols=sp.numbered_symbols("pair"), optimizations="basic")
     hold = [f"{INDENT}const double {printer.doprint(s)} = {printer.doprint(v)};" for s, v in replacements]

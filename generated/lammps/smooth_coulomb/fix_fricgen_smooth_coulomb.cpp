@@ -947,11 +947,12 @@ void FixFricgenSmoothCoulomb::collect_candidates()
       if (tag[j] == tag[i] || !(mask[j] & groupbit)) continue;
       const bool up = tag[j] > tag[i];
       if (!up && j >= nlocal && twice) continue;    // listed from the lower ID as well
-      if (!up && atom->map(tag[j]) >= nlocal) {     // the lower ID is owned by another rank: it gets the pair
+      const int canonical = atom->map(tag[j]);
+      if (!up && canonical >= nlocal) {    // the lower ID is owned by another rank: it gets the pair
         sent.push_back({j, tag[i]});
         continue;
       }
-      const Pair p = up ? Pair{tag[i], tag[j], i, atom->map(tag[j]), i, j, 0, 0} : Pair{tag[j], tag[i], atom->map(tag[j]), i, j, i, 0, 0};
+      const Pair p = up ? Pair{tag[i], tag[j], i, canonical, i, j, 0, 0} : Pair{tag[j], tag[i], canonical, i, j, i, 0, 0};
       scratch.push_back(p);
       counts[place[p.i] + 1]++;
     }
