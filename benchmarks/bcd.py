@@ -6,8 +6,9 @@
    event-driven version); target <= 0.028 us.
 2. Each method's largest step within error, in the dense rings (rho_bar sigma = 0.7: N = 140 rods on L = 100,
    U0 = 6, 16 rings, 25 bins; bcd_timestep.py's case "0.7"). Methods: BCD's merge layer, the bridge layer
-   with the Euler drift ("bridge") and with the Leimkuhler-Matthews midpoint ("bridge+lm",
-   docs/physics-bcd-field-drift.md). Rule: a step is within error when its profile is statistically
+   with the Euler drift ("bridge"), with the Leimkuhler-Matthews midpoint ("bridge+lm") and with the Euler drift
+   and the Metropolis test of each step ("bridge+metropolis"; docs/physics-bcd-field-drift.md,
+   docs/physics-bcd-metropolis.md). Rule: a step is within error when its profile is statistically
    consistent with the exact one in the standard study (1.25 sampled time units after 0.25, the k-th step
    tried with seed 11 + k): the chi^2 per bin within 3 standard deviations of an exact profile's (chi2_bound)
    and the pooled contact density within 3 of its errors of exact. Each method's CANDIDATES are tried from the
@@ -51,13 +52,19 @@ from bcd_timestep import case_config, measure  # noqa: E402
 PEER_CURRENT, PEER_OLD, TARGET = 0.28, 0.07, 0.028
 LAYERS = ("merge", "bridge")
 #: The methods: (contact layer, drift scheme).
-METHODS = {"merge": ("merge", "euler"), "bridge": ("bridge", "euler"), "bridge+lm": ("bridge", "lm")}
+METHODS = {
+    "merge": ("merge", "euler"),
+    "bridge": ("bridge", "euler"),
+    "bridge+lm": ("bridge", "lm"),
+    "bridge+metropolis": ("bridge", "metropolis"),
+}
 #: The steps tried for part 2, largest first, down to below each method's step as measured (docs/physics-bcd-contact-layer.md:
 #: merge's contact density is 0.979 of exact at 1e-6 and 0.995 at 3e-7; bridge's chi^2 per bin 2.34 at 3e-4, 0.98 at 1.5e-4).
 CANDIDATES = {
     "merge": (3e-5, 1e-5, 2.5e-6, 1e-6, 3e-7),
     "bridge": (1e-3, 3e-4, 1.5e-4, 1e-4, 3e-5),
     "bridge+lm": (2e-3, 1e-3, 5e-4, 3e-4, 2e-4, 1.5e-4, 1e-4),
+    "bridge+metropolis": (4e-3, 2e-3, 1e-3, 5e-4),
 }
 REACHES = ("merge", 3e-5)  # merge's largest step that reaches a 1 % profile (through its bias), issue 30
 STUDY = 1.25  # sampled time units of the standard study

@@ -15,7 +15,8 @@ least squares). The contact ratio's error is that of the sum over bins, from the
 replicas (RodProfiles.contact_cov).
 
 Run: nice -n 10 python benchmarks/bcd_timestep.py [--layers merge,bridge] [--steps 1e-3,...] [--cases 0.2,0.5,0.7,sticky] [--time T]
-[--replicas R] [--seed S] [--drifts euler,lm] (lm: the Leimkuhler-Matthews midpoint, docs/physics-bcd-field-drift.md)
+[--replicas R] [--seed S] [--drifts euler,lm,metropolis] (lm: the Leimkuhler-Matthews midpoint; metropolis: the Metropolis
+test of each step, the fraction of steps it rejected in the column "rejected"; docs/physics-bcd-field-drift.md)
 (the full table: minutes per layer and case on two cores; dt = 1e-6 dominates).
 """
 
@@ -63,6 +64,7 @@ def measure(case: str, dt: float, layer: str, duration: float, replicas: int = 1
     shape = exact.bin_means(c.bins) - config.model.mean_density
     contrast = (rho - config.model.mean_density) @ shape / (shape @ shape)
     figures.update(contrast=contrast.mean() - 1, contrast_err=contrast.std(ddof=1) / math.sqrt(c.replicas), seconds=seconds)
+    figures.update(rejected=simulation.rejection)
     return figures
 
 
@@ -99,14 +101,14 @@ def main() -> None:
     parser.add_argument("--layers", default="merge,bridge")
     parser.add_argument("--steps", default=",".join(f"{dt:g}" for dt in STEPS))
     parser.add_argument("--cases", default="0.2,0.5,0.7,sticky")
-    parser.add_argument("--drifts", default="euler", help="the field's drift schemes (euler, lm: bridge layer only)")
+    parser.add_argument("--drifts", default="euler", help="the field's drift schemes (euler; lm, metropolis: bridge layer only)")
     parser.add_argument("--time", type=float, default=None, help="sampled time (default 1.25 hard, 3 sticky)")
     parser.add_argument("--replicas", type=int, default=16, help="rings per run")
     parser.add_argument("--seed", type=int, default=11, help="the seed of the first step; the k-th step uses seed + k")
     args = parser.parse_args()
     steps = [float(value) for value in args.steps.split(",")]
-    print("| case | layer | dt | L1/rho | chi2/bin | contact / exact | contact chi2/bin | c - 1 | s |")
-    print("|---|---|---|---|---|---|---|---|---|", flush=True)
+    print("| case | layer | dt | L1/rho | chi2/bin | contact / exact | contact chi2/bin | c - 1 | rejected | s |")
+    print("|---|---|---|---|---|---|---|---|---|---|", flush=True)
     fits = []
     for case in args.cases.split(","):
         duration = args.time or (3.0 if case == "sticky" else 1.25)
@@ -120,7 +122,7 @@ def main() -> None:
                 chi2 = "-" if f.get("contact_chi2_per_dof") is None else f"{f['contact_chi2_per_dof']:.2f}"
                 print(
                     f"| {case} | {label} | {dt:g} | {100 * f['l1_dev_over_rho']:.2f} % | {f['chi2_per_dof']:.2f} | {ratio} | {chi2} | "
-                    f"{f['contrast']:+.4f} ± {f['contrast_err']:.4f} | {f['seconds']:.0f} |",
+                    f"{f['contrast']:+.4f} ± {f['contrast_err']:.4f} | {100 * f['rejected']:.1f} % | {f['seconds']:.0f} |",
                     flush=True,
                 )
                 points.append((dt, f["contrast"], f["contrast_err"]))

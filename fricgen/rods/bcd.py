@@ -47,12 +47,14 @@ import numpy as np
 from numba import types
 
 from ..kernels import FIELD_KERNEL, SCALAR_KERNEL
-from ..rng import BCD, fold_key, stream_key, ziggurat_normal
+from ..rng import BCD, fold_key, stream_key, uniform, ziggurat_normal
+from .adjusted import log_proposal
 from .contact import BRIDGE, MERGE, bridge_work, phase_bin, propagate, tally_local_time
-from .records import COUNTS, RING, STEPPING
+from .records import COUNTS, REJECTED, RING, STEPPING
 from .sticky import ALL_IN_CONTACT, OK, sticky_step
 
-EULER, LM = 0, 1  # the field's drift schemes, the positions of their names in fricgen.rods.config.DRIFT_SCHEMES
+EULER, LM, METROPOLIS = 0, 1, 2  # the field's drift schemes, the positions of their names in fricgen.rods.config.DRIFT_SCHEMES
+_ACCEPT_STREAM = 0x6163636570740001  # the Metropolis test's uniform: a sub-stream of the step's BCD key
 CONTACT_TOLERANCE = 1e-12  # relative to sigma: gaps below it are contacts (with the sticky boundary: bonds)
 PASSED = 1  # rods overlapped (the other statuses: fricgen.rods.sticky)
 
@@ -238,8 +240,32 @@ def _sample(x, at, ring, gap_width, rho_counts, gap_counts):
     return status
 
 
-@numba.njit(types.int64(types.Array(types.float64, 2, "C"), RING, STEPPING, FIELD_KERNEL, SCALAR_KERNEL, COUNTS), parallel=True, cache=True)
-def advance_rods(positions, ring, stepping, external, pair_force, counts):
+@numba.njit(cache=True)
+def _metropolis(x, start, pushes, held, energy, ring, dt, external, field_energy, accept_key):
+    """The Metropolis test of fricgen.rods.adjusted for the bridge step from ``start`` to x with ``pushes``: True if
+    accepted. held[0] holds the field's forces at ``start`` and energy[0] its energy U(start); on acceptance both
+    become those at x (held[1] and energy[1] are work)."""
+    n, params = x.size, ring.field_params
+    external(x, params, held[1])
+    energy[1] = 0.0
+    for i in range(n):
+        energy[1] += field_energy(x[i], params)
+    args = (ring.mu, dt, ring.diffusion, ring.length, ring.sigma)
+    forward = log_proposal(start, x, pushes, held[0], *args)
+    backward = log_proposal(x, start, pushes, held[1], *args)
+    log_ratio = (energy[0] - energy[1]) / ring.kT + backward - forward
+    accepted = log_ratio >= 0.0 or uniform(accept_key, 0) < math.exp(log_ratio)
+    if accepted:
+        held[0, :] = held[1]
+        energy[0] = energy[1]
+    return accepted
+
+
+_SIGNATURE = types.int64(types.Array(types.float64, 2, "C"), RING, STEPPING, FIELD_KERNEL, SCALAR_KERNEL, SCALAR_KERNEL, COUNTS, REJECTED)
+
+
+@numba.njit(_SIGNATURE, parallel=True, cache=True)
+def advance_rods(positions, ring, stepping, external, field_energy, pair_force, counts, rejected):
     """Advance every replica (row of positions) by ``stepping.steps`` BCD steps, sampling after each.
 
     ``external`` is the field's force_field(xs, params, out), ``pair_force`` the neighbour force
@@ -267,6 +293,7 @@ def advance_rods(positions, ring, stepping, external, pair_force, counts):
         d, drift, bridge = np.empty(n), np.empty(n), bridge_work(n)  # contact.propagate
         sticky = (np.empty(n), np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64), np.empty(n, dtype=np.bool_), np.empty(n + 1))
         normals, midpoint = np.empty(n), np.empty(n)
+        start, held, energy = np.empty(n), np.empty((2, n)), np.zeros(2)  # METROPOLIS: the field at x is kept
         for s in range(stepping.steps):
             key = fold_key(stream_key(stepping.seed, stepping.first_step + s, BCD), r)
             for i in range(n):
@@ -276,7 +303,15 @@ def advance_rods(positions, ring, stepping, external, pair_force, counts):
                 for i in range(n):
                     midpoint[i] = x[i] + 0.5 * noise * mu * dt * normals[i]
                 at = midpoint
-            external(at, ring.field_params, forces)
+            if stepping.drift != METROPOLIS:
+                external(at, ring.field_params, forces)
+            else:  # the field's forces and energy at x are held from the step before
+                if s == 0:
+                    external(x, ring.field_params, held[0])
+                    for i in range(n):
+                        energy[0] += field_energy(x[i], ring.field_params)
+                start[:] = x
+                forces[:] = held[0]
             for i in range(n):
                 if ring.bond > 0.0:
                     drift[i] = mu * dt * (forces[i] + ring.drive)  # the sticky boundary's drift
@@ -298,9 +333,14 @@ def advance_rods(positions, ring, stepping, external, pair_force, counts):
             else:  # trial displacements mu F dt, then the hard core by exchanges (fricgen.rods.contact)
                 for i in range(n):
                     d[i] = mu * forces[i] * dt
-                count = propagate(x, d, length, sigma, variance, key, stepping.layer, bridge)
-                if stepping.layer == BRIDGE:  # the contact density from the local time at contact
+                count, exchanges = propagate(x, d, length, sigma, variance, key, stepping.layer, bridge)
+                if stepping.layer == BRIDGE and stepping.drift != METROPOLIS:  # the contact density from the local time
                     tally_local_time(bridge, count, variance, 2.0 * stepping.gap_width / variance, ring.wavelength, gap_counts[r])
+                if stepping.drift == METROPOLIS:
+                    accept_key = fold_key(key, _ACCEPT_STREAM)  # a step with exchanges is not the layer's: rejected
+                    if exchanges > 0 or not _metropolis(x, start, bridge[0], held, energy, ring, dt, external, field_energy, accept_key):
+                        x[:] = start
+                        rejected[r] += 1
             if status[r] == OK:
                 status[r] = _sample(x, at, ring, stepping.gap_width, rho_counts[r], gap_counts[r])
             if status[r] != OK:

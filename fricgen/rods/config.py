@@ -19,8 +19,8 @@ from ..schema import Section, flat_fields
 BYTES_PER_ROD, BYTES_PER_BIN = 224, 32
 #: How a step ends collisions (fricgen.rods.contact): BCD's inelastic merge (O(sqrt(dt))), elastic exchange, Brownian-bridge push.
 CONTACT_LAYERS = ("merge", "reflect", "bridge")
-#: Where a step evaluates the forces (fricgen.rods.bcd): its start, or its noise's midpoint (docs/physics-bcd-field-drift.md).
-DRIFT_SCHEMES = ("euler", "lm")
+#: Where a step evaluates the forces (fricgen.rods.bcd): its start, its noise's midpoint, its start with a Metropolis test.
+DRIFT_SCHEMES = ("euler", "lm", "metropolis")
 
 
 @dataclass(frozen=True)
@@ -175,9 +175,9 @@ class RodNumerics(Section):
         docs/physics-bcd-contact-layer.md), "reflect" (O(dt) away from contact) or BCD's own "merge"
         (O(sqrt(dt)), docs/physics.md#brownian-cluster-dynamics).
     drift_scheme : str
-        Where a step evaluates the forces: "euler" (at its start) or "lm" (Leimkuhler-Matthews: at the
-        midpoint of its noise, where the profile is also sampled; bridge layer and hard rods only;
-        docs/physics-bcd-field-drift.md).
+        Where a step evaluates the forces: "euler" (its start), "lm" (Leimkuhler-Matthews: its noise's midpoint,
+        where the profile is also sampled) or "metropolis" (its start, then a Metropolis test of the step: the
+        exact equilibrium at any dt, no drive); lm, metropolis: bridge layer, hard rods (docs/physics-bcd-*.md).
     """
 
     SECTION = "numerics"
@@ -204,12 +204,9 @@ class RodNumerics(Section):
         )
         schemes = ", ".join(DRIFT_SCHEMES)
         self.require(self.drift_scheme in DRIFT_SCHEMES, "drift_scheme", f"must be one of {schemes}, got {self.drift_scheme!r}", "give lm")
-        self.require(
-            self.drift_scheme == "euler" or self.contact_layer == "bridge",
-            "drift_scheme",
-            f"the lm drift needs the bridge contact layer, got {self.contact_layer!r}",
-            "give contact_layer = bridge, or drift_scheme = euler",
-        )
+        needs_bridge = f"the {self.drift_scheme} drift needs the bridge contact layer, got {self.contact_layer!r}"
+        fix = "give contact_layer = bridge, or drift_scheme = euler"
+        self.require(self.drift_scheme == "euler" or self.contact_layer == "bridge", "drift_scheme", needs_bridge, fix)
 
 
 @dataclass(frozen=True)
@@ -282,10 +279,12 @@ class RodConfig(Section):
             f"the sticky boundary (eps = 0) runs with the bridge layer only, got {self.numerics.contact_layer!r}",
             "give bridge",
         )
+        scheme, tested = self.numerics.drift_scheme, self.numerics.drift_scheme == "metropolis"
+        why = "without a drive (its test samples an equilibrium; U only)" if tested else "(rods overlap at its midpoint)"
         self.require(
-            self.model.hard_rods or self.numerics.drift_scheme == "euler",
+            scheme == "euler" or (self.model.hard_rods and not (tested and self.model.drive)),
             "numerics.drift_scheme",
-            "the lm drift is for hard rods: a sticky contact or pair potential is undefined where it takes the forces (rods may overlap)",
+            f"the {scheme} drift is for hard rods {why}",
             "give euler",
         )
         m, r = self.model, self.sampling
@@ -321,23 +320,24 @@ class RodConfig(Section):
         """Gap bins that the contact density needs at this dt (fricgen.rods.simulation).
 
         bridge: the bin of its local time at contact only. merge, reflect: that bin, the layer of width
-        about 3 sqrt(4 D dt) where their pair density is distorted, then two windows of fit_bins / 2.
+        about 3 sqrt(4 D dt) where their pair density is distorted, then two windows of fit_bins / 2;
+        with the Metropolis test (exact gaps) no layer.
 
         Returns
         -------
         int
             The number of gap bins.
         """
-        if self.numerics.contact_layer == "bridge":
+        distorted = self.numerics.drift_scheme != "metropolis"  # the Metropolis test's gaps are exact from g = 0
+        if self.numerics.contact_layer == "bridge" and distorted:
             return 1
-        layer = 1 + math.ceil(3 * math.sqrt(4 * self.model.diffusion * self.numerics.dt) / self.sampling.gap_width)
+        layer = 1 + distorted * math.ceil(3 * math.sqrt(4 * self.model.diffusion * self.numerics.dt) / self.sampling.gap_width)
         return layer + 2 * (self.sampling.fit_bins // 2)
 
     @property
     def start_sweeps(self) -> int:
-        """The Monte Carlo sweeps of the start: numerics.start_sweeps, or by default 2000, and 20 000 for the
-        sticky boundary (with 2000 its gamma = 1 profiles were 2-3 errors per bin off,
-        docs/physics-bcd-sticky-boundary.md)."""
+        """The Monte Carlo sweeps of the start: numerics.start_sweeps, or by default 2000, and 20 000 for the sticky
+        boundary (with 2000 its gamma = 1 profiles were 2-3 errors per bin off, docs/physics-bcd-sticky-boundary.md)."""
         if self.numerics.start_sweeps is not None:
             return self.numerics.start_sweeps
         return 20_000 if self.model.sticky_boundary else 2000

@@ -217,7 +217,7 @@ def propagate(x, d, length, sigma, variance, key, layer, work):
     """Move rods by their trial displacements d and restore the hard core by the layer REFLECT or BRIDGE
     (module docstring); variance = 4 D dt of a gap's increment, key = this step's key of the replica,
     work = bridge_work(n); after the step push = work[0] has push[i] > 0 if and only if pair (i, i + 1)
-    touched (bridge). Returns the number of bridge candidates."""
+    touched (bridge). Returns the number of bridge candidates and the number of exchanges."""
     n = x.size
     count = 0
     if layer == BRIDGE:
@@ -230,8 +230,7 @@ def propagate(x, d, length, sigma, variance, key, layer, work):
                 d[_next(i, n)] += 0.5 * p
     for i in range(n):
         x[i] += d[i]
-    exchange(x, length, sigma, 1e-12 * sigma)
-    return count
+    return count, exchange(x, length, sigma, 1e-12 * sigma)
 
 
 @numba.njit(inline="always", cache=True)

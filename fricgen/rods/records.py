@@ -48,3 +48,4 @@ class Stepping(NamedTuple):
 RING = types.NamedTuple([_F, _F, _F, _F, _F, _F, _F, _V, _V, _F, _B, _F], Ring)
 STEPPING = types.NamedTuple([_F, _I, _I, _I, _F, _I, _I], Stepping)
 COUNTS = types.Tuple([_M, _T])
+REJECTED = types.Array(_I, 1, "C")  # per replica: the steps that the Metropolis test rejected

@@ -17,7 +17,8 @@ O(dt), no layer. "reflect" (elastic exchange): O(dt) away from contact, O(sqrt(d
 Contact density (B-26). bridge: the local time of the gaps at contact, E[dL] = 2 D rho_2(x, sigma+) dt,
 from the expected push given each step's end points (no fit). merge and reflect: the pair density at gap
 g beyond the layer, g in [3 s, 3 s + fit_bins w], is fitted per bin by ln rho_2(x, g) = a + b g and
-extrapolated to g = 0; the exact contacts are not counted. Errors by jackknife over replicas. This
+extrapolated to g = 0; the exact contacts are not counted. The Metropolis-adjusted bridge (drift_scheme
+"metropolis", fricgen.rods.adjusted) samples the exact equilibrium: the same fit from g = 0. Errors by jackknife over replicas. This
 holds for hard rods only: within the range of a sticky or pair interaction the pair density is not
 exponential in g and the force acts at contact (deviations() compares it for hard rods only).
 """
@@ -64,7 +65,7 @@ class RodSimulation:
     def __init__(self, config: RodConfig, positions: np.ndarray | None = None):
         self.config = config
         model = config.model
-        warn_step(model, config.numerics.dt)
+        warn_step(model, config.numerics.dt, config.numerics.drift_scheme == "metropolis")
         self._field, field_params = field_kernels(model)  # energy and force kernels
         self._pair, pair_params, pair_range = pair_kernels(model)
         self.ring = Ring(model.length, model.sigma, model.mu, model.kT, model.diffusion, model.drive, model.wavelength,
@@ -74,6 +75,7 @@ class RodSimulation:
             raise ConfigError("positions", "an open line (length = inf) needs initial positions", "give them")
         self.positions = self._initial() if positions is None else self._given(positions)
         self.step, self.sweep = 0, 0
+        self.rejected = np.zeros(config.sampling.replicas, dtype=np.int64)  # steps the Metropolis test rejected
         self.acceptance = self.thermalize(config.start_sweeps)
 
     def _initial(self) -> np.ndarray:
@@ -152,7 +154,10 @@ class RodSimulation:
         for done in range(0, steps, CHUNK_STEPS):
             chunk = min(CHUNK_STEPS, steps - done)
             stepping = Stepping(dt or numerics.dt, chunk, self.step, numerics.seed, sampling.gap_width, layer, drift)
-            status = bcd.advance_rods(self.positions, self.ring, stepping, self._field.force_field, self._pair.force, counts)
+            field, pair = self._field, self._pair
+            status = bcd.advance_rods(
+                self.positions, self.ring, stepping, field.force_field, field.energy, pair.force, counts, self.rejected
+            )
             if status == bcd.PASSED:
                 raise SimulationError(f"rods overlapped near step {self.step + chunk}: a bug or a non-finite force")
             if status == bcd.ALL_IN_CONTACT:
@@ -160,6 +165,12 @@ class RodSimulation:
             if status == LONG_STEP:
                 raise SimulationError(f"a bond's detach probability per step exceeded 1 near step {self.step + chunk}: reduce dt")
             self.step += chunk
+
+    @property
+    def rejection(self) -> float:
+        """The fraction of the steps so far (all replicas) that the Metropolis test rejected (drift_scheme
+        "metropolis", fricgen.rods.adjusted; 0 for the other schemes)."""
+        return float(self.rejected.sum()) / max(1, self.step * self.rejected.size)
 
     def run(self, steps: int) -> RodProfiles:
         """Sample the profiles; the replicas are the independent samples of the errors.
@@ -214,7 +225,7 @@ class RodSimulation:
         if self.config.model.sticky_boundary:  # gap bin 0 holds the bonded pairs: gamma rho_2(x, x + sigma+)
             bonded = pair_density[:, :, 0] * c.gap_width / self.config.model.gamma
             return bonded.mean(0), np.atleast_2d(np.cov(bonded, rowvar=False)) / bonded.shape[0]
-        if self.config.numerics.contact_layer == "bridge":  # gap bin 0 holds the local time at contact
+        if self.config.numerics.contact_layer == "bridge" and self.config.numerics.drift_scheme != "metropolis":  # gap bin 0: local time
             local = pair_density[:, :, 0]
             return local.mean(0), np.atleast_2d(np.cov(local, rowvar=False)) / local.shape[0]
         half = c.fit_bins // 2

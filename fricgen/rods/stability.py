@@ -86,9 +86,11 @@ def refuse_step(model: RodModel, dt: float) -> None:
             )
 
 
-def warn_step(model: RodModel, dt: float) -> None:
-    """A warning (one line) for each ratio above its warning level."""
+def warn_step(model: RodModel, dt: float, tested: bool = False) -> None:
+    """A warning (one line) for each ratio above its warning level; tested: each step passes a Metropolis test
+    (drift_scheme "metropolis"), which keeps the profile exact and rejects more steps instead."""
+    effect = "the Metropolis test rejects many steps (the profile stays exact, the rods move less)" if tested else "the profile is biased"
     for ratio in step_ratios(model, dt):
         if ratio.value > ratio.warn:
             what = f"{ratio.name} = {ratio.value:.3g} is not << 1 at dt = {dt:g} ({ratio.meaning})"
-            warnings.warn(f"{what}: the profile is biased; reduce dt", stacklevel=3)
+            warnings.warn(f"{what}: {effect}; reduce dt", stacklevel=3)

@@ -174,9 +174,10 @@ def _bcd(args: argparse.Namespace) -> int:
     if args.json:
         print(dumps(summary))
     else:
+        rejected = f", {summary['rejected_fraction']:.1%} of the steps rejected" if "rejected_fraction" in summary else ""
         print(
             f"L1/rho_bar = {summary['l1_dev_over_rho']:.4f}, max |d rho| = {summary['max_abs_dev']:.4f}, "
-            f"chi2/bin = {summary['chi2_per_dof']:.2f} ({summary['steps']} steps, {summary['seconds']:.1f} s); wrote {args.out}/"
+            f"chi2/bin = {summary['chi2_per_dof']:.2f} ({summary['steps']} steps{rejected}, {summary['seconds']:.1f} s); wrote {args.out}/"
         )
     return 0
 

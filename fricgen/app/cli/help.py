@@ -82,7 +82,8 @@ ROD_HELP = {
     "seed": "noise seed, an integer",
     "start_sweeps": "Monte Carlo sweeps of the equilibrium start (none: 2000, or 20000 for the sticky boundary eps = 0)",
     "contact_layer": "how a step ends collisions: bridge (Brownian-bridge push, O(dt)), reflect (elastic) or merge (BCD's, O(sqrt(dt)))",
-    "drift_scheme": "where a step evaluates the forces: euler (its start) or lm (Leimkuhler-Matthews: noise midpoint; bridge, hard rods)",
+    "drift_scheme": "where a step evaluates the forces: euler (its start), lm (Leimkuhler-Matthews: noise midpoint) or "
+    "metropolis (its start, then a Metropolis test of the step: the exact equilibrium); lm, metropolis: bridge, hard rods",
     "replicas": "independent rings run in parallel, the samples of the errors",
     "bins": "bins over one wavelength",
     "gap_width": "bin width of the gap histogram (contact density), in wavelengths",

@@ -61,11 +61,12 @@ class Study(Section):
         c.require_sampling()
 
 
-def _sample(config: RodConfig, duration: float, equilibration: float) -> RodProfiles:
-    """From the Monte Carlo equilibrium start, ``equilibration`` at dt (the BCD contact layer forms), then sample."""
+def _sample(config: RodConfig, duration: float, equilibration: float) -> tuple[RodProfiles, float]:
+    """From the Monte Carlo equilibrium start, ``equilibration`` at dt (the BCD contact layer forms), then sample;
+    the profiles and the fraction of steps that the Metropolis test rejected (0 without it)."""
     simulation = RodSimulation(config)
     simulation.equilibrate(equilibration)
-    return simulation.run(max(1, round(duration / config.numerics.dt)))
+    return simulation.run(max(1, round(duration / config.numerics.dt))), simulation.rejection
 
 
 def study(plan: Study, out: Path, force: bool = False) -> dict:
@@ -97,9 +98,9 @@ def study(plan: Study, out: Path, force: bool = False) -> dict:
     refuse_step(config.model, config.numerics.dt)
     exact = exact_profile(config)
     start = time.perf_counter()
-    measured = _sample(config, duration, equilibration)
+    measured, rejection = _sample(config, duration, equilibration)
     if extrapolate:
-        fine = _sample(config.replace(dt=config.numerics.dt / REFINEMENT), duration, equilibration)
+        fine, _ = _sample(config.replace(dt=config.numerics.dt / REFINEMENT), duration, equilibration)
         measured = extrapolate_to_zero_dt(measured, fine, REFINEMENT, config.numerics.error_order)
     seconds = time.perf_counter() - start
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -115,6 +116,7 @@ def study(plan: Study, out: Path, force: bool = False) -> dict:
         "steps": measured.steps,
         "seconds": seconds,
         "extrapolated_to_zero_dt": extrapolate,
+        **({"rejected_fraction": rejection} if config.numerics.drift_scheme == "metropolis" else {}),
         "config": config.as_flat(),
     }
     baxter = None
