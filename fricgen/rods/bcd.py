@@ -32,7 +32,9 @@ The field's drift (Stepping.drift): EULER evaluates the forces at x; LM (Leimkuh
 layer, hard rods) at the midpoint of the step's noise, q = x + delta with delta = sqrt(2 D dt) N / 2, where the
 hard core is not restored (each rod's law at q is its law at x convolved with a Gaussian, the LM correction of the
 one-body profile), then moves x by mu F(q) dt + 2 delta with the bridge; the profile is sampled at q, the gaps and
-the contacts at x (second order for the profile away from contacts).
+the contacts at x (second order for the profile away from contacts). METROPOLIS (bridge layer, hard rods): Euler's
+step, then accepted or rejected as a whole by the Metropolis test of fricgen.rods.adjusted, which makes the field's
+Boltzmann distribution the chain's exact equilibrium at any dt (one test per replica per step).
 
 The physics: docs/physics.md#brownian-cluster-dynamics, docs/physics-bcd-contact-layer.md,
 docs/physics-bcd-field-drift.md.
@@ -274,7 +276,9 @@ def advance_rods(positions, ring, stepping, external, field_energy, pair_force, 
     (k = 0; with the bridge layer instead their local time at contact, fricgen.rods.contact.tally_local_time;
     with the sticky boundary the bonded pairs)
     and with gap r - sigma in [(k - 1) w, k w) (k >= 1), w = gap_width; with stepping.drift == LM the forces act
-    and the profile is sampled at the noise's midpoint (the gaps at the step's end). Returns OK or a
+    and the profile is sampled at the noise's midpoint (the gaps at the step's end); with METROPOLIS ``field_energy``
+    U(x, params) enters the test, rejected[r] counts the replica's rejected steps and no local time is tallied (the
+    contact density comes from the gaps). Returns OK or a
     failure status (PASSED: rods overlapped; ALL_IN_CONTACT: no gap left on the ring; LONG_STEP: a bond's
     detach probability above 1).
     """
