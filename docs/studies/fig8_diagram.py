@@ -20,7 +20,7 @@ from fig8_report import MODELS, by_point  # docs/studies/fig8_report.py, beside 
 from matplotlib.figure import Figure
 
 NAMES = (
-    "fig8_boundary", "fig8_outside", "fig8_low", "fig8_edges", "fig8_edges_seeds", "fig8_edges_rest",
+    "fig8_boundary", "fig8_outside", "fig8_low", "fig8_edges", "fig8_edges_seeds", "fig8_edges_rest", "fig8_edges_seeds2",
     "fig8_frictionless", "fig8_frictionless_map", "fig8_frictionless_seeds",
 )  # fmt: skip
 SMALLEST = 5000

@@ -20,6 +20,18 @@ def test_bcd_writes_profile_plot_and_summary(tmp_path, capsys):
     assert (out / "profile.png").stat().st_size > 10_000
 
 
+def test_bcd_with_the_metropolis_test_reports_its_rejections(tmp_path, capsys):
+    """--drift-scheme metropolis: the fraction of steps rejected, in the summary and the printed line; the other
+    schemes have none."""
+    args = ["bcd", "--n", "140", "--sigma", "0.5", "--dt", "1e-3", "--time", "0.2", "--equilibrate", "0.1", "--out"]
+    assert main([*args, str(tmp_path / "m"), "--drift-scheme", "metropolis"]) == 0
+    assert "of the steps rejected" in capsys.readouterr().out
+    assert main([*args, str(tmp_path / "j"), "--drift-scheme", "metropolis", "--json"]) == 0
+    assert 0.1 < json.loads(capsys.readouterr().out)["rejected_fraction"] < 0.3  # dense rings at 1e-3: about 0.2
+    assert main([*args, str(tmp_path / "e"), "--json"]) == 0
+    assert "rejected_fraction" not in json.loads(capsys.readouterr().out)
+
+
 def test_bcd_sticky_reports_the_representation_error(tmp_path, capsys):
     args = ["bcd", "--n", "20", "--gamma", "1", "--time", "0.1", "--equilibrate", "0.5", "--dt", "2e-5", "--out", str(tmp_path), "--json"]
     assert main(args) == 0
