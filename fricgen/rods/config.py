@@ -177,7 +177,7 @@ class RodNumerics(Section):
     drift_scheme : str
         Where a step evaluates the forces: "euler" (its start), "lm" (Leimkuhler-Matthews: its noise's midpoint,
         where the profile is also sampled) or "metropolis" (its start, then a Metropolis test of the step: the
-        exact equilibrium at any dt, no drive); lm, metropolis: bridge layer, hard rods (docs/physics-bcd-*.md).
+        exact equilibrium at any dt, no drive); lm, metropolis: bridge layer, hard rods (docs/physics-bcd-metropolis.md).
     """
 
     SECTION = "numerics"
