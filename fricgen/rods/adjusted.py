@@ -28,16 +28,7 @@ import math
 
 import numba
 
-from .contact import BRIDGE_CUT
-
-
-@numba.njit(inline="always", cache=True)
-def _gap(x, i, length, sigma):
-    """x_{i+1} - x_i - sigma around the ring (inf after the last rod of an open line)."""
-    j = i + 1
-    if j < x.size:
-        return x[j] - x[i] - sigma
-    return x[0] + length - x[i] - sigma
+from .contact import BRIDGE_CUT, centre_distance
 
 
 @numba.njit(cache=True)
@@ -66,8 +57,8 @@ def log_proposal(start, end, push, forces, mu, dt, diffusion, length, sigma):
     for step in range(1, pairs + 1):
         j = first + step
         j = j - pairs if j >= pairs else j
-        a, p = _gap(start, j, length, sigma), push[j]
-        c = _gap(end, j, length, sigma) - p
+        a, p = centre_distance(start, j, length) - sigma, push[j]
+        c = centre_distance(end, j, length) - sigma - p
         before = push[j - 1] if j > 0 else (push[pairs - 1] if ring else 0.0)
         after = push[j + 1] if j + 1 < pairs else (push[0] if ring else 0.0)
         candidate = 2.0 * a * (c + 0.5 * (before + after)) < BRIDGE_CUT * variance  # the layer's test on the free gap

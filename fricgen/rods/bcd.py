@@ -51,7 +51,7 @@ from numba import types
 from ..kernels import FIELD_KERNEL, SCALAR_KERNEL
 from ..rng import BCD, fold_key, stream_key, uniform, ziggurat_normal
 from .adjusted import log_proposal
-from .contact import BRIDGE, MERGE, bridge_work, phase_bin, propagate, tally_local_time
+from .contact import BRIDGE, MERGE, bridge_work, centre_distance, phase_bin, propagate, right_of, tally_local_time
 from .records import COUNTS, REJECTED, RING, STEPPING
 from .sticky import ALL_IN_CONTACT, OK, sticky_step
 
@@ -59,13 +59,6 @@ EULER, LM, METROPOLIS = 0, 1, 2  # the field's drift schemes, the positions of t
 _ACCEPT_STREAM = 0x6163636570740001  # the Metropolis test's uniform: a sub-stream of the step's BCD key
 CONTACT_TOLERANCE = 1e-12  # relative to sigma: gaps below it are contacts (with the sticky boundary: bonds)
 PASSED = 1  # rods overlapped (the other statuses: fricgen.rods.sticky)
-
-
-@numba.njit(inline="always", cache=True)
-def _gap(x, i, length):
-    """x_{i+1} - x_i around the ring."""
-    j = i + 1
-    return x[j] - x[i] if j < x.size else x[0] + length - x[i]
 
 
 @numba.njit(cache=True)
@@ -145,8 +138,8 @@ def _schedule(x, v, i, now, length, sigma, dt, events, size):
     (B-14; x: positions extrapolated to t = 0, x_i(t) = x_i + v_i t), push the event at
     when[i] = max(t, now); else when[i] = -1. Returns the heap size; events = (heap_t, heap_i, when)."""
     heap_t, heap_i, when = events
-    closing = v[i] - v[i + 1 if i + 1 < x.size else 0]
-    gap = _gap(x, i, length) - sigma
+    closing = v[i] - v[right_of(i, x.size)]
+    gap = centre_distance(x, i, length) - sigma
     when[i] = -1.0
     if closing > 0.0 and gap < closing * dt:
         if size == heap_t.size:  # full of superseded events
@@ -170,17 +163,17 @@ def _step(x, forces, v, length, sigma, mu, dt, clusters, events):
     tolerance = CONTACT_TOLERANCE * sigma
     start = -1
     for i in range(n):
-        if _gap(x, i, length) - sigma > tolerance:
+        if centre_distance(x, i, length) - sigma > tolerance:
             start = i
             break
     if start < 0:
         return ALL_IN_CONTACT
     count, i = 0, start
     for _ in range(n):
-        i = i + 1 if i + 1 < n else 0
+        i = right_of(i, n)
         members[count] = i
         count += 1
-        if _gap(x, i, length) - sigma > tolerance:  # i ends the cluster members[0:count]
+        if centre_distance(x, i, length) - sigma > tolerance:  # i ends the cluster members[0:count]
             if count == 1:
                 v[i] = mu * forces[i]
             else:
@@ -189,23 +182,23 @@ def _step(x, forces, v, length, sigma, mu, dt, clusters, events):
     size = 0
     for i in range(n):
         when[i] = -1.0
-        if _gap(x, i, length) - sigma < (v[i] - v[i + 1 if i + 1 < n else 0]) * dt:  # necessary; rarely true
+        if centre_distance(x, i, length) - sigma < (v[i] - v[right_of(i, n)]) * dt:  # necessary; rarely true
             size = _schedule(x, v, i, 0.0, length, sigma, dt, events, size)
     while size > 0:
         now, left, size = _pop(heap_t, heap_i, size)
         if when[left] != now:  # superseded
             continue
         # merge the cluster ending at `left` with the one starting at `right` (B-17)
-        right = left + 1 if left + 1 < n else 0
+        right = right_of(left, n)
         a, b, m, k = left, right, 1, 1
         while m + k < n:
             c = a - 1 if a > 0 else n - 1
-            if v[c] != v[left] or _gap(x, c, length) - sigma > tolerance:
+            if v[c] != v[left] or centre_distance(x, c, length) - sigma > tolerance:
                 break
             a, m = c, m + 1
         while m + k < n:
-            c = b + 1 if b + 1 < n else 0
-            if v[c] != v[right] or _gap(x, b, length) - sigma > tolerance:
+            c = right_of(b, n)
+            if v[c] != v[right] or centre_distance(x, b, length) - sigma > tolerance:
                 break
             b, k = c, k + 1
         merged = (m * v[left] + k * v[right]) / (m + k)
@@ -213,7 +206,7 @@ def _step(x, forces, v, length, sigma, mu, dt, clusters, events):
         for _ in range(m + k):
             x[c] += (v[c] - merged) * now  # the same x_c(now), now moving with `merged`
             v[c] = merged
-            c = c + 1 if c + 1 < n else 0
+            c = right_of(c, n)
         when[left] = -1.0
         if m + k < n:
             size = _schedule(x, v, a - 1 if a > 0 else n - 1, now, length, sigma, dt, events, size)
@@ -233,7 +226,7 @@ def _sample(x, at, ring, gap_width, rho_counts, gap_counts):
     status = OK
     for i in range(n):
         rho_counts[phase_bin(at[i] * per_wavelength, bins)] += 1.0
-        gap = _gap(x, i, length) - sigma
+        gap = centre_distance(x, i, length) - sigma
         if gap < -1e-9 * sigma:
             status = PASSED
         k = 0 if gap <= contact else 1 + int(min(gap * per_gap, gap_bins))  # inf: after the last rod of an open line
@@ -322,10 +315,10 @@ def advance_rods(positions, ring, stepping, external, field_energy, pair_force, 
                 forces[i] += ring.drive + noise * normals[i]
             if ring.pair_on:
                 for i in range(n):
-                    gap = _gap(at, i, length)
+                    gap = centre_distance(at, i, length)
                     if gap < sigma + ring.pair_range:
                         f = pair_force(gap, ring.pair_params)  # on the right rod, from the left one (B-32)
-                        forces[i + 1 if i + 1 < n else 0] += f
+                        forces[right_of(i, n)] += f
                         forces[i] -= f
             if ring.bond > 0.0:  # Baxter's limit: the sticky boundary (fricgen.rods.sticky)
                 for i in range(n):

@@ -192,21 +192,22 @@ class RodNumerics(Section):
         """q of the time-step bias O(dt^q) of the contact layer: 1/2 for merge, 1 for bridge and reflect."""
         return 0.5 if self.contact_layer == "merge" else 1.0
 
+    @property
+    def tested(self) -> bool:
+        """Whether a Metropolis test accepts or rejects each step (drift_scheme = "metropolis", exact equilibrium)."""
+        return self.drift_scheme == "metropolis"
+
     def __post_init__(self):
         self.require_positive("dt")
         self.require(0 <= self.seed < 2**63, "seed", f"must be an integer in [0, 2^63), got {self.seed}", "give a non-negative integer")
         if self.start_sweeps is not None:
             self.require(self.start_sweeps >= 0, "start_sweeps", f"must be >= 0, got {self.start_sweeps}", "give 0 or more")
             self.require_steps("start_sweeps", self.start_sweeps)
-        layers = ", ".join(CONTACT_LAYERS)
-        self.require(
-            self.contact_layer in CONTACT_LAYERS, "contact_layer", f"must be one of {layers}, got {self.contact_layer!r}", "give bridge"
-        )
-        schemes = ", ".join(DRIFT_SCHEMES)
-        self.require(self.drift_scheme in DRIFT_SCHEMES, "drift_scheme", f"must be one of {schemes}, got {self.drift_scheme!r}", "give lm")
-        needs_bridge = f"the {self.drift_scheme} drift needs the bridge contact layer, got {self.contact_layer!r}"
-        fix = "give contact_layer = bridge, or drift_scheme = euler"
-        self.require(self.drift_scheme == "euler" or self.contact_layer == "bridge", "drift_scheme", needs_bridge, fix)
+        layer, scheme = self.contact_layer, self.drift_scheme
+        self.require(layer in CONTACT_LAYERS, "contact_layer", f"must be one of {', '.join(CONTACT_LAYERS)}, got {layer!r}", "give bridge")
+        self.require(scheme in DRIFT_SCHEMES, "drift_scheme", f"must be one of {', '.join(DRIFT_SCHEMES)}, got {scheme!r}", "give lm")
+        needs_bridge = f"the {scheme} drift needs the bridge contact layer, got {layer!r}"
+        self.require(scheme == "euler" or layer == "bridge", "drift_scheme", needs_bridge, "give contact_layer = bridge, or euler")
 
 
 @dataclass(frozen=True)
@@ -279,7 +280,7 @@ class RodConfig(Section):
             f"the sticky boundary (eps = 0) runs with the bridge layer only, got {self.numerics.contact_layer!r}",
             "give bridge",
         )
-        scheme, tested = self.numerics.drift_scheme, self.numerics.drift_scheme == "metropolis"
+        scheme, tested = self.numerics.drift_scheme, self.numerics.tested
         why = "without a drive (its test samples an equilibrium; U only)" if tested else "(rods overlap at its midpoint)"
         self.require(
             scheme == "euler" or (self.model.hard_rods and not (tested and self.model.drive)),
@@ -328,7 +329,7 @@ class RodConfig(Section):
         int
             The number of gap bins.
         """
-        distorted = self.numerics.drift_scheme != "metropolis"  # the Metropolis test's gaps are exact from g = 0
+        distorted = not self.numerics.tested  # the Metropolis test's gaps are exact from g = 0
         if self.numerics.contact_layer == "bridge" and distorted:
             return 1
         layer = 1 + distorted * math.ceil(3 * math.sqrt(4 * self.model.diffusion * self.numerics.dt) / self.sampling.gap_width)
@@ -338,9 +339,8 @@ class RodConfig(Section):
     def start_sweeps(self) -> int:
         """The Monte Carlo sweeps of the start: numerics.start_sweeps, or by default 2000, and 20 000 for the sticky
         boundary (with 2000 its gamma = 1 profiles were 2-3 errors per bin off, docs/physics-bcd-sticky-boundary.md)."""
-        if self.numerics.start_sweeps is not None:
-            return self.numerics.start_sweeps
-        return 20_000 if self.model.sticky_boundary else 2000
+        chosen = self.numerics.start_sweeps
+        return chosen if chosen is not None else (20_000 if self.model.sticky_boundary else 2000)
 
     def replace(self, **changes) -> RodConfig:
         """A copy with flat fields changed.

@@ -44,7 +44,15 @@ _ROUNDING = 8.0 * 2.0**-52  # relative rounding of an exchange, x_i + sigma - L 
 
 
 @numba.njit(inline="always", cache=True)
-def _next(i, n):
+def centre_distance(x, i, length):
+    """x_{i+1} - x_i around a ring of ``length`` (inf after the last rod of an open line, length = inf)."""
+    j = i + 1
+    return x[j] - x[i] if j < x.size else x[0] + length - x[i]
+
+
+@numba.njit(inline="always", cache=True)
+def right_of(i, n):
+    """The rod to the right of rod i on a ring of n rods."""
     return i + 1 if i + 1 < n else 0
 
 
@@ -60,7 +68,7 @@ def exchange(x, length, sigma, tolerance):
     while swapped:
         swapped = False
         for i in range(n):
-            j = _next(i, n)
+            j = right_of(i, n)
             offset = length if j == 0 else 0.0
             if j == 0 and not math.isfinite(length):
                 continue  # an open line has no seam
@@ -141,7 +149,7 @@ def _chain(first, size, count, cyclic, variance, tolerance, work):
         for j in range(size):
             k = _member(first, j, count)
             i = candidates[k]
-            s = 0.5 * (push[i - 1 if i > 0 else n - 1] + push[_next(i, n)])
+            s = 0.5 * (push[i - 1 if i > 0 else n - 1] + push[right_of(i, n)])
             phi, g, values[k, 7] = _bridge(values[k, 0], values[k, 1] - s, variance, values[k, 2], values[k, 7])
             residual = max(residual, abs(phi - push[i]))
             h, r = -0.5 * g, phi - g * s
@@ -184,10 +192,10 @@ def _pushes(x, d, length, sigma, variance, bridge_key, work):
     count = 0
     for i in range(n):
         push[i] = 0.0
-        j = _next(i, n)
+        j = right_of(i, n)
         if j == 0 and not math.isfinite(length):
             continue
-        a = (x[j] + length if j == 0 else x[j]) - x[i] - sigma
+        a = centre_distance(x, i, length) - sigma
         b = a + d[j] - d[i]
         if 2.0 * a * b < BRIDGE_CUT * variance:
             u = uniform(bridge_key, i)
@@ -204,7 +212,7 @@ def _pushes(x, d, length, sigma, variance, bridge_key, work):
         if candidates[k - 1 if k > 0 else count - 1] == (i - 1 if i > 0 else n - 1):
             continue
         size, pushed = 1, push[i] > 0.0
-        while size < count and candidates[_member(k, size, count)] == _next(candidates[_member(k, size - 1, count)], n):
+        while size < count and candidates[_member(k, size, count)] == right_of(candidates[_member(k, size - 1, count)], n):
             pushed = pushed or push[candidates[_member(k, size, count)]] > 0.0
             size += 1
         if pushed and size > 1:
@@ -227,7 +235,7 @@ def propagate(x, d, length, sigma, variance, key, layer, work):
             p = push[i]
             if p > 0.0:  # half on each rod of the pair
                 d[i] -= 0.5 * p
-                d[_next(i, n)] += 0.5 * p
+                d[right_of(i, n)] += 0.5 * p
     for i in range(n):
         x[i] += d[i]
     return count, exchange(x, length, sigma, 1e-12 * sigma)

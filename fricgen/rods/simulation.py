@@ -65,7 +65,7 @@ class RodSimulation:
     def __init__(self, config: RodConfig, positions: np.ndarray | None = None):
         self.config = config
         model = config.model
-        warn_step(model, config.numerics.dt, config.numerics.drift_scheme == "metropolis")
+        warn_step(model, config.numerics.dt, config.numerics.tested)
         self._field, field_params = field_kernels(model)  # energy and force kernels
         self._pair, pair_params, pair_range = pair_kernels(model)
         self.ring = Ring(model.length, model.sigma, model.mu, model.kT, model.diffusion, model.drive, model.wavelength,
@@ -225,7 +225,7 @@ class RodSimulation:
         if self.config.model.sticky_boundary:  # gap bin 0 holds the bonded pairs: gamma rho_2(x, x + sigma+)
             bonded = pair_density[:, :, 0] * c.gap_width / self.config.model.gamma
             return bonded.mean(0), np.atleast_2d(np.cov(bonded, rowvar=False)) / bonded.shape[0]
-        if self.config.numerics.contact_layer == "bridge" and self.config.numerics.drift_scheme != "metropolis":  # gap bin 0: local time
+        if self.config.numerics.contact_layer == "bridge" and not self.config.numerics.tested:  # gap bin 0: local time
             local = pair_density[:, :, 0]
             return local.mean(0), np.atleast_2d(np.cov(local, rowvar=False)) / local.shape[0]
         half = c.fit_bins // 2

@@ -32,7 +32,7 @@ import math
 import numba
 
 from ..rng import fold_key, uniform
-from .contact import BRIDGE_CUT
+from .contact import BRIDGE_CUT, centre_distance, right_of
 
 OK, ALL_IN_CONTACT, LONG_STEP = 0, 2, 3  # step statuses, shared with fricgen.rods.bcd
 _STICKY_STREAM = 0x737469636B790001  # the boundary's uniforms: a sub-stream of the step's BCD key
@@ -108,17 +108,6 @@ def detach_probability(alpha, spread, gamma):
     return spread * emission_norm(alpha) / gamma
 
 
-@numba.njit(inline="always", cache=True)
-def _next(i, n):
-    return i + 1 if i + 1 < n else 0
-
-
-@numba.njit(inline="always", cache=True)
-def _gap(x, i, length, sigma):
-    j = i + 1 if i + 1 < x.size else 0
-    return (x[j] + length if j == 0 else x[j]) - x[i] - sigma
-
-
 @numba.njit(cache=True)
 def _first_free(link, n):
     """A rod whose left pair is not linked (the start of a cluster), or -1 if all are."""
@@ -156,7 +145,7 @@ def sticky_step(x, d, drift, length, sigma, variance, gamma, key, tolerance, wor
     n = x.size
     sticky_key = fold_key(key, _STICKY_STREAM)
     for i in range(n):
-        link[i] = _gap(x, i, length, sigma) <= tolerance
+        link[i] = centre_distance(x, i, length) - sigma <= tolerance
     s = _first_free(link, n)
     if s < 0:
         return ALL_IN_CONTACT
@@ -193,10 +182,10 @@ def sticky_step(x, d, drift, length, sigma, variance, gamma, key, tolerance, wor
         k += m
         c += 1
     for i in range(n):  # free pairs between clusters: bonded if their bridge touched
-        j = _next(i, n)
+        j = right_of(i, n)
         if link[i] or cluster[i] == cluster[j] or (j == 0 and not math.isfinite(length)):
             continue
-        a, b = _gap(x, i, length, sigma), _gap(y, i, length, sigma)
+        a, b = centre_distance(x, i, length) - sigma, centre_distance(y, i, length) - sigma
         pair_variance = variance * (1.0 / size[cluster[i]] + 1.0 / size[cluster[j]])
         if b <= 0.0:
             link[i] = True
@@ -208,7 +197,7 @@ def sticky_step(x, d, drift, length, sigma, variance, gamma, key, tolerance, wor
         _repack(x, y, link, length, sigma)
         overlapped = False
         for i in range(n):
-            if not link[i] and _gap(x, i, length, sigma) < 0.0:
+            if not link[i] and centre_distance(x, i, length) - sigma < 0.0:
                 link[i] = overlapped = True
         if not overlapped:
             break

@@ -116,7 +116,7 @@ def study(plan: Study, out: Path, force: bool = False) -> dict:
         "steps": measured.steps,
         "seconds": seconds,
         "extrapolated_to_zero_dt": extrapolate,
-        **({"rejected_fraction": rejection} if config.numerics.drift_scheme == "metropolis" else {}),
+        **({"rejected_fraction": rejection} if config.numerics.tested else {}),
         "config": config.as_flat(),
     }
     baxter = None
