@@ -7,7 +7,7 @@ Written: results/fig8_n5000.png (one panel per model, F0 against area fraction, 
 of frames separated and labelled with it and its seeds); printed: the same as a Markdown table per model.
 
 Usage: python docs/studies/fig8_diagram.py [--results docs/studies/results] [NAME ...]
-       (default names: fig8_boundary fig8_outside fig8_low fig8_edges fig8_edges_seeds fig8_frictionless)
+       (default: the records of NAMES below, those of every N >= 5000 sweep)
 """
 
 from __future__ import annotations
@@ -22,6 +22,7 @@ from matplotlib.figure import Figure
 NAMES = (
     "fig8_boundary", "fig8_outside", "fig8_low", "fig8_edges", "fig8_edges_seeds", "fig8_edges_rest", "fig8_edges_seeds2",
     "fig8_frictionless", "fig8_frictionless_map", "fig8_frictionless_seeds", "fig8_frictionless_seeds2",
+    "fig8_frictionless_seeds3", "fig8_edges_last",
 )  # fmt: skip
 SMALLEST = 5000
 
