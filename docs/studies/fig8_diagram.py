@@ -1,7 +1,8 @@
 """Fig. 8's diagram at N >= 5000 from the records of fig8_report.py: every run of the named records
 (results/<name>.json) with at least 5000 discs, pooled by model and state point across the records (the seeds of
 one point may come from several sweeps), each point's fraction of frames strictly separated (the mean over its
-seeds, the error from their scatter, or from the frames' autocorrelation for one seed: fig8_report.by_point).
+seeds, the error from their scatter, or from the frames' autocorrelation for one seed: fig8_report.by_point), and how
+many seeds' pooled histograms pass the strict criterion and the paper's.
 
 Written: results/fig8_n5000.png (one panel per model, F0 against area fraction, each point coloured by its fraction
 of frames separated and labelled with it and its seeds); printed: the same as a Markdown table per model.
@@ -40,9 +41,11 @@ def pooled_runs(results: Path, names) -> tuple[list[dict], list[str]]:
 
 
 def cell(point: dict) -> str:
-    """'0.86 ± 0.03 (3)': the fraction of frames separated, its error and the number of seeds."""
+    """'0.46 ± 0.13 · 1/3 · 3/3': the fraction of frames strictly separated and its error, then how many of the seeds'
+    pooled histograms are strictly separated and how many bimodal by the paper's criterion, out of the seeds."""
     error = point["seed_error"] if point["seed_error"] is not None else point["fractions"][0][1]
-    return f"{point['mean']:.2f} ± {error:.2f} ({len(point['seeds'])})"
+    seeds, strict = len(point["seeds"]), point["verdicts"].count("separated")
+    return f"{point['mean']:.2f} ± {error:.2f} · {strict}/{seeds} · {sum(point['bimodal'])}/{seeds}"
 
 
 def tables(points: list[dict]) -> str:

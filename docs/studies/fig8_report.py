@@ -47,8 +47,9 @@ def separated_fraction(run: dict) -> tuple[float, float]:
 
 
 def by_point(runs: list[dict]) -> list[dict]:
-    """Per model and state point: each seed's separated fraction (with its autocorrelation error) and their mean
-    with the error from the seeds' scatter (std / sqrt(seeds); none for one seed)."""
+    """Per model and state point: each seed's separated fraction (with its autocorrelation error), pooled verdict and
+    paper's criterion, and the fractions' mean with the error from the seeds' scatter (std / sqrt(seeds); none for one
+    seed)."""
     points = {}
     for run in runs:
         points.setdefault((run["model"], run["F0"], run["packing_fraction"]), []).append(run)
@@ -65,6 +66,7 @@ def by_point(runs: list[dict]) -> list[dict]:
                 "seeds": [run["seed"] for run in group],
                 "fractions": fractions,
                 "verdicts": [verdict(run) for run in group],
+                "bimodal": [run["pooled"]["bimodal"] for run in group],  # the paper's criterion, pooled
                 "mean": float(values.mean()),
                 "seed_error": scatter,
             }
