@@ -77,6 +77,10 @@ def diagram(points: list[dict], path: Path) -> None:
         axis.margins(x=0.15, y=0.15)
         axis.set_title(model)
         axis.set_xlabel("area fraction")
+    forces = sorted({p["F0"] for p in points})
+    axes[0].set_yscale("log")  # the forces' grid is about geometric (20 ... 200): a linear axis crowds the friction models
+    axes[0].set_yticks(forces, [f"{f:g}" for f in forces])
+    axes[0].minorticks_off()
     axes[0].set_ylabel("F0 (kT / sigma)")
     figure.colorbar(dots, ax=list(axes), label="fraction of frames strictly separated")
     figure.suptitle(f"N >= {SMALLEST}: fraction of the last 50 t_R's frames strictly separated (seeds)")
