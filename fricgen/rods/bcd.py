@@ -51,7 +51,7 @@ from numba import types
 from ..kernels import FIELD_KERNEL, SCALAR_KERNEL
 from ..rng import BCD, fold_key, stream_key, uniform, ziggurat_normal
 from .adjusted import log_proposal
-from .contact import BRIDGE, MERGE, bridge_work, centre_distance, phase_bin, propagate, right_of, tally_local_time
+from .contact import BRIDGE, MERGE, bridge_work, centre_distance, left_of, phase_bin, propagate, right_of, tally_local_time
 from .records import COUNTS, REJECTED, RING, STEPPING
 from .sticky import ALL_IN_CONTACT, OK, sticky_step
 
@@ -192,7 +192,7 @@ def _step(x, forces, v, length, sigma, mu, dt, clusters, events):
         right = right_of(left, n)
         a, b, m, k = left, right, 1, 1
         while m + k < n:
-            c = a - 1 if a > 0 else n - 1
+            c = left_of(a, n)
             if v[c] != v[left] or centre_distance(x, c, length) - sigma > tolerance:
                 break
             a, m = c, m + 1
@@ -209,7 +209,7 @@ def _step(x, forces, v, length, sigma, mu, dt, clusters, events):
             c = right_of(c, n)
         when[left] = -1.0
         if m + k < n:
-            size = _schedule(x, v, a - 1 if a > 0 else n - 1, now, length, sigma, dt, events, size)
+            size = _schedule(x, v, left_of(a, n), now, length, sigma, dt, events, size)
             size = _schedule(x, v, b, now, length, sigma, dt, events, size)
     for i in range(n):
         x[i] += v[i] * dt

@@ -56,6 +56,12 @@ def right_of(i, n):
     return i + 1 if i + 1 < n else 0
 
 
+@numba.njit(inline="always", cache=True)
+def left_of(i, n):
+    """The rod to the left of rod i on a ring of n rods."""
+    return i - 1 if i > 0 else n - 1
+
+
 @numba.njit(cache=True)
 def exchange(x, length, sigma, tolerance):
     """Exchange neighbours whose gap is below -tolerance until none is (elastic collisions of equal rods):
@@ -149,7 +155,7 @@ def _chain(first, size, count, cyclic, variance, tolerance, work):
         for j in range(size):
             k = _member(first, j, count)
             i = candidates[k]
-            s = 0.5 * (push[i - 1 if i > 0 else n - 1] + push[right_of(i, n)])
+            s = 0.5 * (push[left_of(i, n)] + push[right_of(i, n)])
             phi, g, values[k, 7] = _bridge(values[k, 0], values[k, 1] - s, variance, values[k, 2], values[k, 7])
             residual = max(residual, abs(phi - push[i]))
             h, r = -0.5 * g, phi - g * s
@@ -209,7 +215,7 @@ def _pushes(x, d, length, sigma, variance, bridge_key, work):
         return count
     for k in range(count):  # the chains, from the candidates whose left neighbour is none (the seam's included)
         i = candidates[k]
-        if candidates[k - 1 if k > 0 else count - 1] == (i - 1 if i > 0 else n - 1):
+        if candidates[left_of(k, count)] == left_of(i, n):
             continue
         size, pushed = 1, push[i] > 0.0
         while size < count and candidates[_member(k, size, count)] == right_of(candidates[_member(k, size - 1, count)], n):

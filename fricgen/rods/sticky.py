@@ -32,7 +32,7 @@ import math
 import numba
 
 from ..rng import fold_key, uniform
-from .contact import BRIDGE_CUT, centre_distance, right_of
+from .contact import BRIDGE_CUT, centre_distance, left_of, right_of
 
 OK, ALL_IN_CONTACT, LONG_STEP = 0, 2, 3  # step statuses, shared with fricgen.rods.bcd
 _STICKY_STREAM = 0x737469636B790001  # the boundary's uniforms: a sub-stream of the step's BCD key
@@ -112,7 +112,7 @@ def detach_probability(alpha, spread, gamma):
 def _first_free(link, n):
     """A rod whose left pair is not linked (the start of a cluster), or -1 if all are."""
     for s in range(n):
-        if not link[s - 1 if s > 0 else n - 1]:
+        if not link[left_of(s, n)]:
             return s
     return -1
 
