@@ -219,6 +219,16 @@ def test_a_run_from_before_a_setting_existed_counts_as_finished_at_its_default(f
     assert f"point {POINTS[0]}: law.rolling_noise: {out / POINTS[0]} holds a finished run with False, not True" in capsys.readouterr().err
 
 
+@pytest.mark.skipif(not Path("/proc/self/autogroup").exists(), reason="a kernel without autogroups")
+def test_a_run_in_its_own_session_keeps_the_sweeps_niceness():
+    """A new session starts a scheduling group at nice 0 (Linux autogroups); the run sets its own nice
+    value there, so that a niced sweep yields the cores to other sessions' work."""
+    code = "import os\nfrom fricgen.app.sweep.task import keep_niceness\nos.nice(7)\nkeep_niceness()\n"
+    code += "print(open('/proc/self/autogroup').read())"
+    done = subprocess.run([sys.executable, "-c", code], start_new_session=True, capture_output=True, text=True, check=True)
+    assert done.stdout.split()[-1] == "7", done.stdout
+
+
 def _child_of(out, point):
     """The process that runs ``point`` of the sweep into ``out`` (the task's child), or None."""
     for process in psutil.process_iter(["cmdline"]):

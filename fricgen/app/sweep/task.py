@@ -5,6 +5,9 @@ with ``NUMBA_NUM_THREADS=1`` (one core per point) in a session of its own (a Ctr
 reaches the sweep, which stops the workers, not each run twice), its output appended to the folder's
 ``run.log``. The child
 
+- keeps the sweep's priority (:func:`keep_niceness`): a ``nice -n 19 fricgen sweep`` yields the cores
+  to the user's other work, its tests or a benchmark, in the new session too;
+
 - holds an exclusive lock (``flock``) on the folder's ``.lock`` while it works, so a copy of the point
   that Dask reschedules after a lost worker waits until the old child has exited, never writing
   beside it (the kernel drops the lock when a process dies, however it dies);
@@ -90,6 +93,19 @@ def run_point(spec: dict) -> dict:
     return {"point": spec["name"], "returncode": child.returncode, "seconds": time.perf_counter() - clock}
 
 
+def keep_niceness() -> None:
+    """Give this process's scheduling group the process's own nice value.
+
+    On Linux with autogroups (``/proc/sys/kernel/sched_autogroup_enabled``) a new session starts a
+    group of its own at nice 0, and the scheduler shares the CPU between groups before it looks at
+    the processes' nice values: a run of a ``nice -n 19`` sweep would take a core from the user's
+    test suite as if it were not niced. Without autogroups, nothing changes."""
+    niceness = os.nice(0)
+    if niceness > 0:
+        with contextlib.suppress(OSError):
+            Path("/proc/self/autogroup").write_text(str(niceness))
+
+
 def _watch(parent: int) -> None:
     """SIGINT to this process once ``parent`` (the worker) is gone: the run stops as on Ctrl-C."""
 
@@ -135,6 +151,7 @@ def _run(spec: dict, out: str | None = None, resume: str | None = None) -> int:
 
 
 def _child(spec: dict) -> int:
+    keep_niceness()
     _watch(spec["parent"])
     folder = Path(spec["folder"])
     with _lock(folder):
