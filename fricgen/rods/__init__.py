@@ -28,7 +28,6 @@ from .config import RodConfig, RodModel, RodNumerics, RodSampling, rod_config
 from .interactions import best_exponent, field_energy, field_kernels, pair_kernels, stability_ratio, sticky_force_max
 from .neighbours import HARD_RODS, Neighbours
 from .residuals import percus_residual, sticky_residual
-from .simulation import RodProfiles, RodSimulation, extrapolate_to_zero_dt
 from .theory import RodProfile, rod_profile
 from .uniform import sticky_rods, tonks
 
@@ -58,3 +57,15 @@ __all__ = [
     "sticky_rods",
     "tonks",
 ]
+
+#: The names of ``simulation``, loaded on first use: it compiles the BCD engine (about 40 s on a cold cache), which the
+#: command line's rod flags (read from ``config``) and the Langevin commands do not need.
+_SIMULATION = ("RodProfiles", "RodSimulation", "extrapolate_to_zero_dt")
+
+
+def __getattr__(name: str):
+    if name in _SIMULATION:
+        from . import simulation
+
+        return getattr(simulation, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

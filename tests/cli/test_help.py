@@ -5,6 +5,8 @@ prints no reST markup, and ``fricgen --version`` answers."""
 import argparse
 import importlib
 import re
+import subprocess
+import sys
 
 import pytest
 
@@ -90,3 +92,11 @@ def test_thermostat_check_line_says_what_passed_means(monkeypatch, capsys):
     line = capsys.readouterr().out
     assert "KL(velocities) = 3.0e-04, KL(spins) = 5.0e-04: passed" in line
     assert "both T within 4 standard errors of kT and both KL below 0.002" in line, line
+
+
+def test_the_command_line_leaves_the_bcd_engine_unloaded():
+    """The rod flags come from fricgen.rods.config: building the parser does not load (on a cold cache, compile, about
+    40 s) the BCD engine, which only `fricgen bcd` and the rods API need."""
+    code = "import sys\nfrom fricgen.app.cli.commands import parser\nparser()\nprint(list(sys.modules))"
+    loaded = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert "fricgen.rods.config" in loaded and "fricgen.rods.bcd" not in loaded and "fricgen.rods.simulation" not in loaded, loaded
