@@ -7,7 +7,6 @@ reaches the sweep, which stops the workers, not each run twice), its output appe
 
 - keeps the sweep's priority (:func:`keep_niceness`): a ``nice -n 19 fricgen sweep`` yields the cores
   to the user's other work, its tests or a benchmark, in the new session too;
-
 - holds an exclusive lock (``flock``) on the folder's ``.lock`` while it works, so a copy of the point
   that Dask reschedules after a lost worker waits until the old child has exited, never writing
   beside it (the kernel drops the lock when a process dies, however it dies);
