@@ -21,18 +21,11 @@ count, stale caches).
 """
 
 from .errors import ConfigError, FricgenError, KernelError, SimulationError
+from .lazy import on_first_use
 
 __version__ = "0.1.0"
 
-#: The names most used in a notebook, loaded on first use (``import fricgen`` stays light).
-_LAZY = {"load_law": "fricgen.kernels", "LawKernels": "fricgen.kernels"}
-
 __all__ = ["ConfigError", "FricgenError", "KernelError", "LawKernels", "SimulationError", "__version__", "load_law"]
 
-
-def __getattr__(name: str):
-    if name not in _LAZY:
-        raise AttributeError(f"module 'fricgen' has no attribute {name!r}")
-    import importlib
-
-    return getattr(importlib.import_module(_LAZY[name]), name)
+#: The names most used in a notebook, loaded on first use (``import fricgen`` stays light).
+__getattr__ = on_first_use(__name__, {"fricgen.kernels": ("LawKernels", "load_law")})

@@ -23,6 +23,7 @@ KERNEL_LAYER = {
     "fricgen.rng",
     "fricgen.schema",
     "fricgen.errors",
+    "fricgen.lazy",
     "fricgen.compiled",
     "fricgen.accuracy",
 }

@@ -13,7 +13,8 @@ Public API::
 Modules: ``config`` (what to simulate), ``system`` (particles, states, initial configurations,
 walls), ``contact_law`` (a ``[law]`` section's kernels, checked once), ``simulation`` (the run
 loop), ``integrator``, ``pairs``, ``neighbors`` and ``records`` (the compiled step), ``analysis``
-(T_eff, histograms, KL), ``trajectory`` (GSD, checkpoints); the
+(T_eff, histograms, KL), ``trajectory`` (GSD, checkpoints), ``mobility`` (the contact mobilities of the kinds of
+particle); the
 statistical test of a law's thermostat is a study, fricgen.app.thermostat_check. Imports only the
 kernel layer, the RNG, fricgen.schema/errors and fricgen.derive.calculus: never SymPy, the rods
 engine or the application.
@@ -23,11 +24,10 @@ import fricgen.compiled  # noqa: F401  (first: sets Numba up before anything imp
 
 # isort: split
 
+from ..lazy import on_first_use
 from .analysis import Estimate, Sampler, block_estimate, kl_divergence, maxwell_boltzmann, scaled_components, temperatures, velocity_profile
 from .config import Active, Bulk, LangevinConfig, Law, Thermostat
-from .simulation import Simulation
 from .system import Particles, State, add_slab_walls, lattice_state, packing_box, thermal_state
-from .trajectory import GSDWriter, checkpoint_config, load_checkpoint, save_checkpoint
 
 __all__ = [
     "Active",
@@ -55,3 +55,9 @@ __all__ = [
     "thermal_state",
     "velocity_profile",
 ]
+
+#: The run loop and what reads and writes its runs, loaded on first use: ``simulation`` compiles the engine (about
+#: 200 s on a cold cache on 2 cores), which the configuration, the particles and the analysis do not need.
+__getattr__ = on_first_use(
+    __name__, {".simulation": ("Simulation",), ".trajectory": ("GSDWriter", "checkpoint_config", "load_checkpoint", "save_checkpoint")}
+)

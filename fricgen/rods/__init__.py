@@ -23,6 +23,7 @@ import fricgen.compiled  # noqa: F401  (first: sets Numba up before anything imp
 
 # isort: split
 
+from ..lazy import on_first_use
 from .comparison import deviations, exact_profile
 from .config import RodConfig, RodModel, RodNumerics, RodSampling, rod_config
 from .interactions import best_exponent, field_energy, field_kernels, pair_kernels, stability_ratio, sticky_force_max
@@ -60,12 +61,4 @@ __all__ = [
 
 #: The names of ``simulation``, loaded on first use: it compiles the BCD engine (about 40 s on a cold cache), which the
 #: command line's rod flags (read from ``config``) and the Langevin commands do not need.
-_SIMULATION = ("RodProfiles", "RodSimulation", "extrapolate_to_zero_dt")
-
-
-def __getattr__(name: str):
-    if name in _SIMULATION:
-        from . import simulation
-
-        return getattr(simulation, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+__getattr__ = on_first_use(__name__, {".simulation": ("RodProfiles", "RodSimulation", "extrapolate_to_zero_dt")})

@@ -94,9 +94,26 @@ def test_thermostat_check_line_says_what_passed_means(monkeypatch, capsys):
     assert "both T within 4 standard errors of kT and both KL below 0.002" in line, line
 
 
-def test_the_command_line_leaves_the_bcd_engine_unloaded():
-    """The rod flags come from fricgen.rods.config: building the parser does not load (on a cold cache, compile, about
-    40 s) the BCD engine, which only `fricgen bcd` and the rods API need."""
-    code = "import sys\nfrom fricgen.app.cli.commands import parser\nparser()\nprint(list(sys.modules))"
-    loaded = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
-    assert "fricgen.rods.config" in loaded and "fricgen.rods.bcd" not in loaded and "fricgen.rods.simulation" not in loaded, loaded
+#: The modules that compile an engine on import (on a cold cache about 200 s for the Langevin engine, 40 s for BCD).
+ENGINES = ("fricgen.langevin.integrator", "fricgen.langevin.simulation", "fricgen.rods.bcd", "fricgen.rods.simulation")
+
+
+@pytest.mark.parametrize(
+    "command", [["--help"], ["noise", "linear", "--u", "0,1", "--w", "1", "--json"], ["lammps", "linear", "--out", "{tmp}"]], ids=" ".join
+)
+def test_commands_that_run_no_engine_compile_none(command, tmp_path):
+    """The parser's flags (fricgen.rods.config, the thermostat check's defaults), `fricgen noise` (the contact
+    mobilities) and `fricgen lammps` read light modules only: none of the engines is loaded, so a fresh install answers
+    them in seconds."""
+    code = "import sys\nfrom fricgen.app.cli.commands import main\ntry:\n    main(sys.argv[1:])\nfinally:\n    print(*sys.modules)"
+    argv = [word.format(tmp=tmp_path / "plugin") for word in command]
+    done = subprocess.run([sys.executable, "-c", code, *argv], capture_output=True, text=True, check=True, cwd=tmp_path)
+    loaded = set(done.stdout.split())
+    assert "fricgen.app.cli.commands" in loaded and not loaded & set(ENGINES), sorted(loaded & set(ENGINES))
+
+
+def test_the_engines_load_where_they_run():
+    """The control of the test above: reading the engines' lazy names loads the modules it watches."""
+    check = "import sys, fricgen.langevin, fricgen.rods\nfricgen.langevin.Simulation, fricgen.rods.RodSimulation\nprint(*sys.modules)"
+    loaded = subprocess.run([sys.executable, "-c", check], capture_output=True, text=True, check=True).stdout.split()
+    assert set(ENGINES) <= set(loaded)

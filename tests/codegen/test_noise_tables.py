@@ -16,7 +16,7 @@ from fricgen.derive.noise.reference import reference_amplitude
 from fricgen.generated.special import table_value
 from fricgen.kernels import load_law_kernels
 from fricgen.langevin import LangevinConfig, Law, Particles, Simulation, Thermostat, lattice_state
-from fricgen.langevin.simulation import pair_mobilities
+from fricgen.langevin.mobility import pair_mobilities
 
 CASES = [(1.0, 7.0, 1.0), (0.3, 2.0, 0.5), (2.5, 3.5, 3.0), (1.0, 7.0, 0.02), (1.0, 7.0, 50.0)]  # kT, mu, factor on the parameters
 

@@ -22,6 +22,7 @@ from fricgen.derive.calculus import Calculus
 from fricgen.errors import KernelError
 from fricgen.kernels import LawKernels, load_law_kernels
 from fricgen.langevin import LangevinConfig, Law, Particles, Thermostat, thermal_state
+from fricgen.langevin.mobility import mode_mobilities
 
 from .accuracy_cases import LAWS, ROWS, exact
 
@@ -111,7 +112,7 @@ def test_a_run_is_refused_and_without_the_guard_the_wrong_d_runs(corpus, monkeyp
         _simulation(kernels, 60.0)
     monkeypatch.setattr(simulation, "check_noise", lambda *args: None)
     run = _simulation(kernels, 60.0)
-    mu = float(simulation.mode_mobilities(run.particles, "sliding")[0])
+    mu = float(mode_mobilities(run.particles, "sliding")[0])
     values, u = run.couplings.law, 4.0 * math.sqrt(mu * KT)
     truth = float(exact("power", {"kappa_f": 1.0, "alpha": 60.0}, mu * KT, u))
     assert abs(kernels.noise_amplitude("ito")(u, 1.0, 1.0, mu, KT, values) - truth) / truth > 1e-5

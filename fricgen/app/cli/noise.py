@@ -51,10 +51,10 @@ class NoiseQuery(Section):
 
 def default_mobility(mode: str) -> float:
     """The mobility of ``mode`` (sliding, rolling, spinning) between two spheres m = 1, R = 1/2,
-    I = (2/5) m R^2 (the engine's :func:`~fricgen.langevin.simulation.mode_mobilities`): sliding
+    I = (2/5) m R^2 (the engine's :func:`~fricgen.langevin.mobility.mode_mobilities`): sliding
     1/m_i + 1/m_k + R_i^2/I_i + R_k^2/I_k = 7, rolling and spinning R_eff^2 (1/I_i + 1/I_k) = 1.25
     (R_eff = R_i R_k / (R_i + R_k) = 1/4), in 1/m."""
-    from ...langevin.simulation import mode_mobilities
+    from ...langevin.mobility import mode_mobilities
     from ...langevin.system import Particles
 
     return float(mode_mobilities(Particles.spheres(2), mode)[0])

@@ -16,12 +16,15 @@ import math
 import os
 from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ...langevin.analysis import block_estimate, temperatures, velocity_profile
-from ...langevin.simulation import Simulation
 from ...langevin.system import Particles
+
+if TYPE_CHECKING:  # a name only: the Poiseuille study reads tables with this module and compiles no engine
+    from ...langevin.simulation import Simulation
 
 
 class Periodic:

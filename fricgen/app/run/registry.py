@@ -10,9 +10,12 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from ...langevin.simulation import Simulation
 from .config import RunConfig
+
+if TYPE_CHECKING:  # the engine compiles on import: the registry, filled at any import of fricgen.app, needs its name only
+    from ...langevin.simulation import Simulation
 
 
 @dataclass(frozen=True)

@@ -25,6 +25,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import freud
 import gsd.hoomd
@@ -33,9 +34,11 @@ from matplotlib.collections import EllipseCollection
 from matplotlib.figure import Figure
 from scipy.ndimage import gaussian_filter1d
 
-from ...langevin.simulation import Simulation
 from ..run.config import RunConfig
 from ..run.outputs import TRAJECTORY
+
+if TYPE_CHECKING:  # a name only: importing the study (as fricgen.app does) compiles no engine
+    from ...langevin.simulation import Simulation
 
 KERNEL, SPACING = 1.5, 1.0  # sigma
 BIN, SMOOTHING, TOP = 0.01, 0.03, 1.2  # area fraction; values above TOP count in the last bin

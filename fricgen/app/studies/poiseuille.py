@@ -23,6 +23,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import gsd.hoomd
 import numpy as np
@@ -33,9 +34,11 @@ from scipy.spatial import cKDTree
 from ...errors import ConfigError
 from ...kernels import LawKernels, load_law_kernels
 from ...langevin.pairs import WCA_RANGE
-from ...langevin.simulation import Simulation
 from ..run.config import RunConfig
 from ..run.observables import read_table
+
+if TYPE_CHECKING:  # a name only: importing the study (as fricgen.app does) compiles no engine
+    from ...langevin.simulation import Simulation
 
 PROFILES = "profiles.png"  # the velocity and spin profiles of a slit run, with the Stokes fit
 

@@ -18,14 +18,18 @@ import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass, field
+from typing import TYPE_CHECKING
 
+from ... import langevin
 from ...kernels import LawKernels, load_law
 from ...langevin.analysis import Sampler, block_estimate, kl_divergence
 from ...langevin.config import LangevinConfig, Law, Thermostat
 from ...langevin.contact_law import ContactLaw
-from ...langevin.simulation import Simulation
 from ...langevin.system import CLOSE_PACKING, Particles, cubic_side, interaction_reach, lattice_limit, lattice_state, memory_estimate
 from ...schema import Section
+
+if TYPE_CHECKING:  # the engine loads when a check runs (langevin.Simulation), not for the command line's flags
+    from ...langevin.simulation import Simulation
 
 #: Spheres and packing fraction of the check when not given, per dimension (the paper's passive check).
 DEFAULT_N, DEFAULT_PHI = {2: 256, 3: 216}, {2: 0.6, 3: 0.3}
@@ -200,7 +204,7 @@ def passive_run(
     kT, dim = check.thermostat.kT, check.dim
     particles = Particles.spheres(check.size, RADIUS, MASS)
     state = lattice_state(particles, dim, check.fraction, kT=kT, seed=check.seed)
-    simulation = Simulation(check.langevin(), particles, state, law)
+    simulation = langevin.Simulation(check.langevin(), particles, state, law)
     steps = check.steps
     every = check.sample_period
     # equilibration from the lattice start, in chunks of the sampling period: Ctrl-C stops between two
