@@ -28,4 +28,4 @@ __version__ = "0.1.0"
 __all__ = ["ConfigError", "FricgenError", "KernelError", "LawKernels", "SimulationError", "__version__", "load_law"]
 
 #: The names most used in a notebook, loaded on first use (``import fricgen`` stays light).
-__getattr__ = on_first_use(__name__, {"fricgen.kernels": ("LawKernels", "load_law")})
+__getattr__, __dir__ = on_first_use(__name__, {"fricgen.kernels": ("LawKernels", "load_law")})

@@ -99,6 +99,16 @@ def test_import_fricgen_leaves_sympy_out():
     assert "sympy" not in _modules_after(statement)
 
 
+def test_every_public_name_is_listed_before_its_engine_loads():
+    """The packages' costly names load on first use (fricgen.lazy), yet dir() lists every name of __all__, as autodoc
+    (the API reference) and tab completion need, without loading an engine."""
+    packages = ("fricgen", "fricgen.app", "fricgen.langevin", "fricgen.rods")
+    check = "m = importlib.import_module({0!r}); assert set(m.__all__) <= set(dir(m)), {0!r}"
+    code = "import importlib; " + "; ".join(check.format(p) for p in packages)
+    loaded = _modules_after(code)
+    assert not {"fricgen.langevin.simulation", "fricgen.langevin.integrator", "fricgen.rods.simulation", "fricgen.rods.bcd"} & loaded
+
+
 def test_derive_does_not_import_the_runtime():
     """(fricgen.generated itself, a docstring, is imported by importlib.resources to locate the kernels' folder.)"""
     loaded = _modules_after("import fricgen.derive; fricgen.derive.verify")

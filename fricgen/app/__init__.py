@@ -14,7 +14,7 @@ from .run.config import RunConfig, load_config, resolve_source
 
 __all__ = ["RunConfig", "execute", "load_config", "passive_check", "passive_run", "plan", "resolve_source", "run_demo", "thermostat_check"]
 
-__getattr__ = on_first_use(
+__getattr__, __dir__ = on_first_use(
     __name__,
     {
         ".run.runner": ("execute", "plan"),

@@ -58,6 +58,6 @@ __all__ = [
 
 #: The run loop and what reads and writes its runs, loaded on first use: ``simulation`` compiles the engine (about
 #: 200 s on a cold cache on 2 cores), which the configuration, the particles and the analysis do not need.
-__getattr__ = on_first_use(
+__getattr__, __dir__ = on_first_use(
     __name__, {".simulation": ("Simulation",), ".trajectory": ("GSDWriter", "checkpoint_config", "load_checkpoint", "save_checkpoint")}
 )

@@ -61,4 +61,4 @@ __all__ = [
 
 #: The names of ``simulation``, loaded on first use: it compiles the BCD engine (about 40 s on a cold cache), which the
 #: command line's rod flags (read from ``config``) and the Langevin commands do not need.
-__getattr__ = on_first_use(__name__, {".simulation": ("RodProfiles", "RodSimulation", "extrapolate_to_zero_dt")})
+__getattr__, __dir__ = on_first_use(__name__, {".simulation": ("RodProfiles", "RodSimulation", "extrapolate_to_zero_dt")})
