@@ -23,7 +23,7 @@ from matplotlib.figure import Figure
 NAMES = (
     "fig8_boundary", "fig8_outside", "fig8_low", "fig8_edges", "fig8_edges_seeds", "fig8_edges_rest", "fig8_edges_seeds2",
     "fig8_frictionless", "fig8_frictionless_map", "fig8_frictionless_seeds", "fig8_frictionless_seeds2",
-    "fig8_frictionless_seeds3", "fig8_edges_last", "fig8_frictionless_rim",
+    "fig8_frictionless_seeds3", "fig8_edges_last", "fig8_frictionless_rim", "fig8_edges_07", "fig8_low_force",
 )  # fmt: skip
 SMALLEST = 5000
 
