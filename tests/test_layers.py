@@ -207,7 +207,7 @@ APP_GROUPS = {
 @pytest.mark.parametrize("path", _files(*APP_GROUPS), ids=lambda p: str(p.relative_to(ROOT)))
 def test_app_groups_import_only_the_groups_below(path):
     """No group of the application imports one above or beside it, nor fricgen.app itself (whose
-    __init__ imports them all); the engines never import the application (see above)."""
+    __init__ names them all); the engines never import the application (see above)."""
     group = ".".join(_module_name(path).split(".")[:3])
     found = {n for n in _ours(_imports(path)) if n == "fricgen.app" or n.startswith("fricgen.app.")}
     bad = {n for n in found if ".".join(n.split(".")[:3]) not in APP_GROUPS[group]}
