@@ -20,16 +20,12 @@ def pair_mobilities(particles: Particles, limit: int = TABLES) -> np.ndarray:
     particle (mass, radius, inertia), bit for bit as fricgen.langevin.contact_step.find_contacts computes them, at most
     ``limit``: the law module's tabulate_<c> builds a noise table for each (fricgen.derive.backends.tables); a pair of
     other kinds is evaluated by quadrature."""
-    kinds, counts = np.unique(np.stack([particles.inv_mass, particles.radius, particles.inv_inertia], axis=1), axis=0, return_counts=True)
-    kinds = kinds[np.argsort(-counts, kind="stable")]
-    found: list[float] = []
-    for top in range(len(kinds)):
-        for i, k in ((j, top) for j in range(top + 1)):
-            for (mi, ri, ii), (mk, rk, ik) in ((kinds[i], kinds[k]), (kinds[k], kinds[i])):  # (i, k) and (k, i): sums in another order
-                mu = float(mi + mk + ri**2 * ii + rk**2 * ik)
-                if mu > 0.0 and mu not in found and len(found) < limit:
-                    found.append(mu)
-    return np.array(found)
+
+    def sliding(i, k):
+        (mi, ri, ii), (mk, rk, ik) = i, k
+        return float(mi + mk + ri**2 * ii + rk**2 * ik)
+
+    return _of_kinds((particles.inv_mass, particles.radius, particles.inv_inertia), sliding, limit)
 
 
 def mode_mobilities(particles: Particles, mode: str, limit: int = TABLES) -> np.ndarray:
@@ -37,14 +33,25 @@ def mode_mobilities(particles: Particles, mode: str, limit: int = TABLES) -> np.
     R_eff = R_i R_k / (R_i + R_k), bit for bit as fricgen.langevin.contact_step.update_rolling computes it."""
     if mode == "sliding":
         return pair_mobilities(particles, limit)
-    kinds, counts = np.unique(np.stack([particles.radius, particles.inv_inertia], axis=1), axis=0, return_counts=True)
+
+    def turning(i, k):
+        (ri, ii), (rk, ik) = i, k
+        reff = float(ri * rk / (ri + rk))
+        return reff * reff * float(ii + ik)
+
+    return _of_kinds((particles.radius, particles.inv_inertia), turning, limit)
+
+
+def _of_kinds(columns, mobility, limit: int) -> np.ndarray:
+    """The distinct positive ``mobility(i, k)`` of the pairs of kinds of particle (the distinct rows of ``columns``), the
+    most common kinds first, each pair in both orders (the sums differ in their last bit), at most ``limit``."""
+    kinds, counts = np.unique(np.stack(columns, axis=1), axis=0, return_counts=True)
     kinds = kinds[np.argsort(-counts, kind="stable")]
     found: list[float] = []
     for top in range(len(kinds)):
-        for i, k in ((j, top) for j in range(top + 1)):
-            for (ri, ii), (rk, ik) in ((kinds[i], kinds[k]), (kinds[k], kinds[i])):
-                reff = float(ri * rk / (ri + rk))
-                mu = reff * reff * float(ii + ik)
+        for i in range(top + 1):
+            for a, b in ((kinds[i], kinds[top]), (kinds[top], kinds[i])):
+                mu = mobility(a, b)
                 if mu > 0.0 and mu not in found and len(found) < limit:
                     found.append(mu)
     return np.array(found)
