@@ -13,6 +13,8 @@ import pytest
 from fricgen import __version__
 from fricgen.app.cli.commands import main, parser
 
+from ..test_layers import COMPILING
+
 SKIPPED = (argparse._HelpAction, argparse._VersionAction, argparse._SubParsersAction)
 #: Options in a time unit: t0 for the spheres, wavelength^2/D for the rods.
 TIMES = {("thermostat-check", "dt"), ("thermostat-check", "time"), ("bcd", "dt"), ("bcd", "time"), ("bcd", "equilibrate")}
@@ -94,10 +96,6 @@ def test_thermostat_check_line_says_what_passed_means(monkeypatch, capsys):
     assert "both T within 4 standard errors of kT and both KL below 0.002" in line, line
 
 
-#: The modules that compile an engine on import (on a cold cache about 200 s for the Langevin engine, 40 s for BCD).
-ENGINES = ("fricgen.langevin.integrator", "fricgen.langevin.simulation", "fricgen.rods.bcd", "fricgen.rods.simulation")
-
-
 @pytest.mark.parametrize(
     "command", [["--help"], ["noise", "linear", "--u", "0,1", "--w", "1", "--json"], ["lammps", "linear", "--out", "{tmp}"]], ids=" ".join
 )
@@ -109,11 +107,11 @@ def test_commands_that_run_no_engine_compile_none(command, tmp_path):
     argv = [word.format(tmp=tmp_path / "plugin") for word in command]
     done = subprocess.run([sys.executable, "-c", code, *argv], capture_output=True, text=True, check=True, cwd=tmp_path)
     loaded = set(done.stdout.split())
-    assert "fricgen.app.cli.commands" in loaded and not loaded & set(ENGINES), sorted(loaded & set(ENGINES))
+    assert "fricgen.app.cli.commands" in loaded and not loaded & set(COMPILING), sorted(loaded & set(COMPILING))
 
 
 def test_the_engines_load_where_they_run():
     """The control of the test above: reading the engines' lazy names loads the modules it watches."""
     check = "import sys, fricgen.langevin, fricgen.rods\nfricgen.langevin.Simulation, fricgen.rods.RodSimulation\nprint(*sys.modules)"
     loaded = subprocess.run([sys.executable, "-c", check], capture_output=True, text=True, check=True).stdout.split()
-    assert set(ENGINES) <= set(loaded)
+    assert set(COMPILING) <= set(loaded)
